@@ -1,0 +1,141 @@
+//! The atlas: a mesh's topology, its rasterised coverage and the current frame's geometry buffers
+//! (SPEC §1.2–§1.3), rebuilt per frame by [`Atlas::update`] without redoing the pre-processing.
+
+use crate::error::{Result, UvfeatError};
+use crate::frame::Frame;
+use crate::mesh::Topology;
+use crate::raster::{Coverage, GeometryBuffers, Precision};
+use glam::{DVec2, DVec3};
+use std::sync::Arc;
+
+/// Largest accepted buffer resolution (texels per side).
+pub const MAX_RESOLUTION: usize = 32768;
+
+/// How to build an [`Atlas`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtlasOptions {
+    /// Geometry-buffer resolution `W_g` (texels per side; default 1024).
+    pub resolution: usize,
+    /// Storage precision of positions and normals.
+    pub precision: Precision,
+    /// Largest number of bytes the buffers may take.
+    pub memory_budget: u64,
+}
+
+impl Default for AtlasOptions {
+    fn default() -> Self {
+        Self { resolution: 1024, precision: Precision::F32, memory_budget: 8 << 30 }
+    }
+}
+
+/// Parametric-space representation of a mesh at one resolution.
+#[derive(Debug, Clone)]
+pub struct Atlas {
+    /// Pre-processing shared by all frames (and by atlases of other resolutions).
+    pub topology: Arc<Topology>,
+    /// Which surface point each texel shows (UV-only, reused by all frames).
+    pub coverage: Coverage,
+    /// Per-frame mesh quantities.
+    pub frame: Frame,
+    /// Per-frame geometry buffers.
+    pub buffers: GeometryBuffers,
+    /// Storage precision of positions and normals.
+    pub precision: Precision,
+}
+
+impl Atlas {
+    /// Rasterises `topology` and evaluates the buffers for `positions` (one row per input vertex).
+    ///
+    /// # Errors
+    /// [`UvfeatError::InvalidResolution`], [`UvfeatError::ResolutionTooLarge`] (with the memory it
+    /// would take), and the position errors of [`Frame::new`].
+    pub fn new(topology: Arc<Topology>, positions: &[DVec3], options: &AtlasOptions) -> Result<Self> {
+        check_resolution(options)?;
+        let frame = Frame::new(&topology, positions)?;
+        let coverage = Coverage::build(&topology, options.resolution);
+        let buffers = GeometryBuffers::evaluate(&topology, &coverage, &frame, options.precision);
+        Ok(Self { topology, coverage, frame, buffers, precision: options.precision })
+    }
+
+    /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, buffers) for new
+    /// positions; charts, coverage, border texels and edge tables are reused.
+    ///
+    /// # Errors
+    /// Vertex count mismatch or non-finite positions; the atlas is unchanged then.
+    pub fn update(&mut self, positions: &[DVec3]) -> Result<()> {
+        let frame = Frame::new(&self.topology, positions)?;
+        self.buffers = GeometryBuffers::evaluate(&self.topology, &self.coverage, &frame, self.precision);
+        self.frame = frame;
+        Ok(())
+    }
+
+    /// Texels per side.
+    pub fn resolution(&self) -> usize {
+        self.coverage.resolution
+    }
+
+    /// Index of the texel containing the parametric point `uv`; `None` outside `[0, 1)^2`.
+    pub fn texel_at(&self, uv: DVec2) -> Option<usize> {
+        let r = self.resolution() as f64;
+        let (x, y) = (uv.x * r, uv.y * r);
+        if !(x >= 0.0 && y >= 0.0 && x < r && y < r) {
+            return None;
+        }
+        Some(y as usize * self.resolution() + x as usize)
+    }
+
+    /// Chart id at `uv` (-1 for empty texels and points outside the domain).
+    pub fn chart_at(&self, uv: DVec2) -> i32 {
+        self.texel_at(uv).map_or(-1, |t| self.coverage.chart[t])
+    }
+
+    /// The texel containing `uv` if `accept` takes it, else the accepted texel of the 3x3
+    /// neighbourhood whose centre is closest to `uv` (the SPEC's fallback for points in gutters).
+    pub fn nearest_texel(&self, uv: DVec2, accept: impl Fn(usize) -> bool) -> Option<usize> {
+        if let Some(t) = self.texel_at(uv).filter(|&t| accept(t)) {
+            return Some(t);
+        }
+        let n = self.resolution() as i64;
+        let (ci, cj) = ((uv.x * n as f64).floor() as i64, (uv.y * n as f64).floor() as i64);
+        let mut best: Option<(f64, usize)> = None;
+        for j in (cj - 1).max(0)..=(cj + 1).min(n - 1) {
+            for i in (ci - 1).max(0)..=(ci + 1).min(n - 1) {
+                let t = (j * n + i) as usize;
+                if !accept(t) {
+                    continue;
+                }
+                let d = self.texel_centre(t).distance_squared(uv);
+                if best.is_none_or(|(bd, _)| d < bd) {
+                    best = Some((d, t));
+                }
+            }
+        }
+        best.map(|(_, t)| t)
+    }
+
+    /// Centre of texel `t` in parametric coordinates.
+    pub fn texel_centre(&self, t: usize) -> DVec2 {
+        let r = self.resolution();
+        DVec2::new(((t % r) as f64 + 0.5) / r as f64, ((t / r) as f64 + 0.5) / r as f64)
+    }
+}
+
+/// Bytes the coverage and one frame of buffers take at `resolution`.
+pub fn buffer_bytes(resolution: usize) -> u64 {
+    (resolution as u64).pow(2) * Coverage::BYTES_PER_TEXEL
+}
+
+fn check_resolution(options: &AtlasOptions) -> Result<()> {
+    if options.resolution == 0 || options.resolution > MAX_RESOLUTION {
+        return Err(UvfeatError::InvalidResolution { resolution: options.resolution, max: MAX_RESOLUTION });
+    }
+    let needed = buffer_bytes(options.resolution);
+    if needed > options.memory_budget {
+        return Err(UvfeatError::ResolutionTooLarge {
+            resolution: options.resolution,
+            needed_mib: needed >> 20,
+            budget_mib: options.memory_budget >> 20,
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,28 @@
+//! # uvfeat-core
+//!
+//! Multi-scale geometric features of triangle meshes computed in the mesh's UV parameter space
+//! (Andreadis, Papaioannou, Mavridis, GRAPP 2015). The modules follow the pipeline:
+//!
+//! 1. [`mesh`]: validated input, welding, charts, edge classes, seam transition maps;
+//! 2. [`raster`]: rasterised coverage and per-frame geometry buffers;
+//! 3. [`distortion`] and [`relocation`]: local metric and seam-crossing of parametric points;
+//! 4. [`atlas`]: the object tying them together, rebuilt per frame.
+//!
+//! Conventions (SPEC §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
+//! at index `j * R + i`, centred at `((i + 0.5)/R, (j + 0.5)/R)`; normals outward by the
+//! right-hand rule on counter-clockwise corners.
+#![warn(missing_docs)]
+
+pub mod atlas;
+pub mod distortion;
+pub mod error;
+pub mod frame;
+pub mod lookup;
+pub mod mesh;
+pub mod raster;
+pub mod relocation;
+pub mod shapes;
+
+pub use atlas::{Atlas, AtlasOptions};
+pub use error::{Result, UvfeatError};
+pub use raster::Precision;

@@ -1,0 +1,149 @@
+//! Edge classes (SPEC §1.2.4): every geometric edge is interior, seam, border or non-manifold.
+
+use glam::DVec2;
+use rayon::prelude::*;
+
+/// One face's side of a geometric edge: corners `local` and `local + 1` of `face`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct FaceSide {
+    pub face: u32,
+    pub local: u8,
+}
+
+/// What lies across a chart-boundary side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SideKind {
+    /// Two faces, UV-discontinuous: the sample continues in `other_face` (maybe the same chart).
+    #[allow(missing_docs)]
+    Seam { other_face: u32, other_local: u8 },
+    /// One face: the mesh ends here.
+    Border,
+    /// More than two faces share the edge: treated as a border (SPEC §1.1), counted.
+    NonManifold,
+    /// The face across has a zero-area UV triangle, so there is nowhere to continue.
+    DegenerateNeighbour,
+}
+
+/// How many geometric edges fall in each class.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct EdgeCounts {
+    /// Two faces, UV-continuous.
+    pub interior: usize,
+    /// Two faces, UV-discontinuous.
+    pub seam: usize,
+    /// One face (or the face across has a degenerate UV triangle).
+    pub border: usize,
+    /// More than two faces.
+    pub non_manifold: usize,
+}
+
+/// The result of classifying every edge of the mesh.
+pub(crate) struct EdgeClasses {
+    /// Pairs of faces joined by a UV-continuous (interior) edge; they belong to the same chart.
+    pub interior_pairs: Vec<(u32, u32)>,
+    /// Chart-boundary sides and what lies across each.
+    pub boundary: Vec<(FaceSide, SideKind)>,
+    pub counts: EdgeCounts,
+}
+
+/// Classifies the edges of `faces` (geometric vertex ids), skipping `degenerate` faces.
+///
+/// Two faces are UV-continuous across an edge when both endpoints carry the same UV (compared
+/// exactly) on both sides (SPEC §1.2.2–§1.2.3).
+pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], degenerate: &[bool]) -> EdgeClasses {
+    let mut sides: Vec<(u64, FaceSide)> = faces
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(f, tri)| {
+            (0..3u8).map(move |local| {
+                let (a, b) = (tri[local as usize], tri[(local as usize + 1) % 3]);
+                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+                (key, FaceSide { face: f as u32, local })
+            })
+        })
+        .collect();
+    sides.par_sort_unstable_by_key(|(key, side)| (*key, side.face, side.local));
+
+    let mut classes =
+        EdgeClasses { interior_pairs: Vec::new(), boundary: Vec::new(), counts: EdgeCounts::default() };
+    for group in sides.chunk_by(|x, y| x.0 == y.0) {
+        let live: Vec<FaceSide> =
+            group.iter().map(|(_, s)| *s).filter(|s| !degenerate[s.face as usize]).collect();
+        let had_degenerate = live.len() < group.len();
+        match live.as_slice() {
+            [] => {}
+            [only] => {
+                let kind = if had_degenerate { SideKind::DegenerateNeighbour } else { SideKind::Border };
+                classes.counts.border += 1;
+                classes.boundary.push((*only, kind));
+            }
+            [x, y] if !had_degenerate => {
+                if uv_continuous(faces, corner_uvs, *x, *y) {
+                    classes.counts.interior += 1;
+                    classes.interior_pairs.push((x.face, y.face));
+                } else {
+                    classes.counts.seam += 1;
+                    classes.boundary.push((*x, SideKind::Seam { other_face: y.face, other_local: y.local }));
+                    classes.boundary.push((*y, SideKind::Seam { other_face: x.face, other_local: x.local }));
+                }
+            }
+            many => {
+                classes.counts.non_manifold += 1;
+                classes.boundary.extend(many.iter().map(|s| (*s, SideKind::NonManifold)));
+            }
+        }
+    }
+    classes
+}
+
+/// UV of geometric vertex `vertex` in `face` (the vertex must be a corner of the face).
+pub(crate) fn uv_of_vertex(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], face: u32, vertex: u32) -> DVec2 {
+    let corner = faces[face as usize].iter().position(|&v| v == vertex).unwrap_or(0);
+    corner_uvs[face as usize][corner]
+}
+
+fn uv_continuous(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], x: FaceSide, y: FaceSide) -> bool {
+    let tri = faces[x.face as usize];
+    let (a, b) = (tri[x.local as usize], tri[(x.local as usize + 1) % 3]);
+    [a, b].iter().all(|&v| {
+        uv_of_vertex(faces, corner_uvs, x.face, v) == uv_of_vertex(faces, corner_uvs, y.face, v)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two triangles sharing edge (1, 2) of the unit square.
+    fn square(uv_split: bool) -> (Vec<[u32; 3]>, Vec<[DVec2; 3]>) {
+        let faces = vec![[0, 1, 2], [2, 1, 3]];
+        let shift = if uv_split { 0.5 } else { 0.0 };
+        let uv = |x: f64, y: f64| DVec2::new(x, y);
+        let corner = vec![
+            [uv(0.0, 0.0), uv(0.5, 0.0), uv(0.0, 0.5)],
+            [uv(0.0 + shift, 0.5), uv(0.5 + shift, 0.0), uv(0.5 + shift, 0.5)],
+        ];
+        (faces, corner)
+    }
+
+    #[test]
+    fn shared_uv_edge_is_interior_and_split_edge_is_seam() {
+        let (faces, uv) = square(false);
+        let classes = classify_edges(&faces, &uv, &[false, false]);
+        assert_eq!(classes.counts, EdgeCounts { interior: 1, seam: 0, border: 4, non_manifold: 0 });
+        let (faces, uv) = square(true);
+        let classes = classify_edges(&faces, &uv, &[false, false]);
+        assert_eq!(classes.counts, EdgeCounts { interior: 0, seam: 1, border: 4, non_manifold: 0 });
+        assert_eq!(classes.boundary.len(), 6);
+    }
+
+    #[test]
+    fn three_faces_on_an_edge_are_non_manifold() {
+        let faces = vec![[0, 1, 2], [1, 0, 3], [0, 1, 4]];
+        let z = DVec2::ZERO;
+        let uv = vec![[z, DVec2::X, DVec2::Y]; 3];
+        let classes = classify_edges(&faces, &uv, &[false; 3]);
+        assert_eq!(classes.counts.non_manifold, 1);
+        assert_eq!(classes.boundary.iter().filter(|(_, k)| *k == SideKind::NonManifold).count(), 3);
+    }
+}

@@ -1,0 +1,161 @@
+//! The once-per-topology pre-processing (SPEC §1.2): everything here depends on connectivity and
+//! UVs only, so every animation frame reuses it.
+
+use super::charts::chart_ids;
+use super::edges::{classify_edges, EdgeCounts, FaceSide, SideKind};
+use super::weld::weld_positions;
+use super::{uv_is_degenerate, uv_signed_area2, TriangleMesh};
+use crate::error::{Result, UvfeatError};
+use glam::{DVec2, DVec3};
+use std::collections::HashMap;
+
+/// One face's side of a chart-boundary edge (a seam side, a mesh border or a non-manifold edge).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundarySide {
+    /// The face whose edge this is.
+    pub face: u32,
+    /// The edge runs from corner `local` to corner `local + 1` of `face`.
+    pub local: u8,
+    /// Chart of `face`.
+    pub chart: i32,
+    /// What lies across.
+    pub kind: SideKind,
+    /// Index (into [`Topology::sides`]) of the same seam seen from the other face; `-1` otherwise.
+    pub reverse: i32,
+    /// Chart across the seam (may equal `chart` for a self-adjacent seam); `-1` where the surface ends.
+    pub adjacent_chart: i32,
+}
+
+/// Counts that describe the pre-processing.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TopologyDiagnostics {
+    /// Vertices as given (before welding).
+    pub input_vertices: usize,
+    /// Geometric vertices after welding.
+    pub geometric_vertices: usize,
+    /// Faces with a zero-area UV triangle: skipped, their edges become borders.
+    pub degenerate_uv_faces: usize,
+    /// Faces whose UV triangle is clockwise (mirrored charts).
+    pub mirrored_uv_faces: usize,
+    /// Geometric edges per class.
+    pub edges: EdgeCounts,
+}
+
+/// Welded connectivity, charts and chart-boundary sides of a UV-mapped mesh.
+#[derive(Debug, Clone)]
+pub struct Topology {
+    /// (n_input_vertices) geometric id of every input vertex.
+    pub vertex_ids: Vec<u32>,
+    /// (n_geometric) the input vertex whose position stands for each geometric vertex.
+    pub representative: Vec<u32>,
+    /// (n_faces) faces as geometric vertex ids.
+    pub faces: Vec<[u32; 3]>,
+    /// (n_faces) UV of each corner.
+    pub corner_uvs: Vec<[DVec2; 3]>,
+    /// (n_faces) chart id, `-1` for faces with a degenerate UV triangle.
+    pub face_chart: Vec<i32>,
+    /// Number of charts.
+    pub n_charts: usize,
+    /// Every chart-boundary side.
+    pub sides: Vec<BoundarySide>,
+    /// Counts for reports.
+    pub diagnostics: TopologyDiagnostics,
+}
+
+impl Topology {
+    /// Runs the pre-processing of SPEC §1.2 (welding, charts, edge classes).
+    ///
+    /// `weld_tolerance` is in object units (0 = exact equality).
+    ///
+    /// # Errors
+    /// [`UvfeatError::AllUvDegenerate`] when no face has a usable UV triangle.
+    pub fn build(mesh: &TriangleMesh, weld_tolerance: f64) -> Result<Self> {
+        let (vertex_ids, n_geometric) = weld_positions(&mesh.positions, weld_tolerance);
+        let mut representative = vec![u32::MAX; n_geometric];
+        for (v, &g) in vertex_ids.iter().enumerate() {
+            if representative[g as usize] == u32::MAX {
+                representative[g as usize] = v as u32;
+            }
+        }
+        let faces: Vec<[u32; 3]> = mesh.faces.iter().map(|t| t.map(|v| vertex_ids[v as usize])).collect();
+        let corner_uvs: Vec<[DVec2; 3]> = (0..faces.len()).map(|f| mesh.corner_uvs(f)).collect();
+        // A face whose corners weld together is degenerate in 3D and in the edge graph alike.
+        let excluded: Vec<bool> = faces
+            .iter()
+            .zip(&corner_uvs)
+            .map(|(t, uv)| uv_is_degenerate(uv) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            .collect();
+        let degenerate_uv_faces = excluded.iter().filter(|&&x| x).count();
+        if degenerate_uv_faces == faces.len() {
+            return Err(UvfeatError::AllUvDegenerate { faces: faces.len() });
+        }
+        let classes = classify_edges(&faces, &corner_uvs, &excluded);
+        let (face_chart, n_charts) = chart_ids(faces.len(), &classes.interior_pairs, &excluded);
+        let sides = boundary_sides(&classes.boundary, &face_chart);
+        let mirrored_uv_faces = corner_uvs
+            .iter()
+            .zip(&excluded)
+            .filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0)
+            .count();
+        let diagnostics = TopologyDiagnostics {
+            input_vertices: mesh.positions.len(),
+            geometric_vertices: n_geometric,
+            degenerate_uv_faces,
+            mirrored_uv_faces,
+            edges: classes.counts,
+        };
+        Ok(Self { vertex_ids, representative, faces, corner_uvs, face_chart, n_charts, sides, diagnostics })
+    }
+
+    /// Number of geometric (welded) vertices.
+    pub fn n_geometric(&self) -> usize {
+        self.representative.len()
+    }
+
+    /// Positions of the geometric vertices, taken from a frame's input positions.
+    ///
+    /// # Errors
+    /// [`UvfeatError::FrameVertexCount`] when `positions` does not have one row per input vertex;
+    /// [`UvfeatError::NonFinitePosition`] for NaN or Inf.
+    pub fn geometric_positions(&self, positions: &[DVec3]) -> Result<Vec<DVec3>> {
+        if positions.len() != self.vertex_ids.len() {
+            return Err(UvfeatError::FrameVertexCount { expected: self.vertex_ids.len(), got: positions.len() });
+        }
+        if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+            return Err(UvfeatError::NonFinitePosition { index, value: p.to_array() });
+        }
+        Ok(self.representative.iter().map(|&v| positions[v as usize]).collect())
+    }
+
+    /// The two geometric vertex ids and corner UVs of a boundary side, in the side's order.
+    pub fn side_endpoints(&self, side: &BoundarySide) -> ([u32; 2], [DVec2; 2]) {
+        let (f, k) = (side.face as usize, side.local as usize);
+        let tri = self.faces[f];
+        let uv = self.corner_uvs[f];
+        ([tri[k], tri[(k + 1) % 3]], [uv[k], uv[(k + 1) % 3]])
+    }
+}
+
+fn boundary_sides(boundary: &[(FaceSide, SideKind)], face_chart: &[i32]) -> Vec<BoundarySide> {
+    let index: HashMap<(u32, u8), usize> =
+        boundary.iter().enumerate().map(|(i, (s, _))| ((s.face, s.local), i)).collect();
+    boundary
+        .iter()
+        .map(|&(side, kind)| {
+            let (reverse, adjacent_chart) = match kind {
+                SideKind::Seam { other_face, other_local } => {
+                    (index[&(other_face, other_local)] as i32, face_chart[other_face as usize])
+                }
+                _ => (-1, -1),
+            };
+            BoundarySide {
+                face: side.face,
+                local: side.local,
+                chart: face_chart[side.face as usize],
+                kind,
+                reverse,
+                adjacent_chart,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,107 @@
+//! Welding of duplicated positions into geometric vertices (SPEC §1.2.1).
+//!
+//! glTF and PLY split a vertex wherever its UV or normal changes; the edge graph must see through
+//! those splits, or every seam would look like a mesh border.
+
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Maps every input vertex to a geometric vertex id.
+///
+/// With `tolerance == 0` positions are welded on exact equality (`-0.0 == 0.0`); otherwise
+/// positions closer than `tolerance` (object units) are welded, transitively.
+///
+/// # Returns
+/// `(ids, n_geometric)`: `ids[v]` in `0..n_geometric`, numbered in order of first appearance.
+pub fn weld_positions(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize) {
+    if tolerance > 0.0 {
+        weld_with_tolerance(positions, tolerance)
+    } else {
+        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(positions.len());
+        let ids = positions
+            .iter()
+            .map(|p| {
+                let next = first.len() as u32;
+                *first.entry(exact_key(*p)).or_insert(next)
+            })
+            .collect();
+        (ids, first.len())
+    }
+}
+
+fn exact_key(p: DVec3) -> [u64; 3] {
+    // Adding 0.0 turns -0.0 into +0.0 so both weld together.
+    [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]
+}
+
+/// Grid hashing with cells of the tolerance's size: candidates are in the 27 surrounding cells.
+fn weld_with_tolerance(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize) {
+    let cell = |p: DVec3| (p / tolerance).floor().as_i64vec3().to_array();
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for (v, p) in positions.iter().enumerate() {
+        grid.entry(cell(*p)).or_default().push(v as u32);
+    }
+    let mut parent: Vec<u32> = (0..positions.len() as u32).collect();
+    for (v, p) in positions.iter().enumerate() {
+        let [cx, cy, cz] = cell(*p);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(bucket) = grid.get(&[cx + dx, cy + dy, cz + dz]) else { continue };
+                    for &w in bucket {
+                        if (w as usize) < v && positions[w as usize].distance(*p) <= tolerance {
+                            union(&mut parent, v as u32, w);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let mut ids = vec![0u32; positions.len()];
+    let mut numbering: HashMap<u32, u32> = HashMap::new();
+    for v in 0..positions.len() {
+        let root = find(&mut parent, v as u32);
+        let next = numbering.len() as u32;
+        ids[v] = *numbering.entry(root).or_insert(next);
+    }
+    (ids, numbering.len())
+}
+
+/// Union–find root with path halving.
+pub(crate) fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        parent[x as usize] = parent[parent[x as usize] as usize];
+        x = parent[x as usize];
+    }
+    x
+}
+
+/// Union–find merge; the smaller root wins so results are deterministic.
+pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+        parent[hi as usize] = lo;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_weld_merges_duplicates_and_signed_zero() {
+        let p = [DVec3::ZERO, DVec3::X, DVec3::new(-0.0, 0.0, 0.0), DVec3::X];
+        let (ids, n) = weld_positions(&p, 0.0);
+        assert_eq!(ids, vec![0, 1, 0, 1]);
+        assert_eq!(n, 2);
+    }
+
+    #[test]
+    fn tolerance_weld_merges_near_points_only() {
+        let p = [DVec3::ZERO, DVec3::new(1e-9, 0.0, 0.0), DVec3::new(0.5, 0.0, 0.0)];
+        let (ids, n) = weld_positions(&p, 1e-7);
+        assert_eq!(ids, vec![0, 0, 1]);
+        assert_eq!(n, 2);
+    }
+}

@@ -1,0 +1,136 @@
+//! Which surface point every texel shows (SPEC §1.3.1–§1.3.2, §1.3.4). Coverage depends on UVs
+//! only, so it is built once per topology and resolution; each frame then evaluates positions,
+//! normals and metrics from it (SPEC §1.9, animation).
+
+use super::boundary::{rasterise_edge, EdgeHit};
+use super::triangles::{rasterise_triangle, TriangleHit};
+use crate::mesh::Topology;
+use rayon::prelude::*;
+
+/// Counts that describe a rasterisation.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CoverageDiagnostics {
+    /// Texels whose centre lies in a UV triangle.
+    pub covered_texels: usize,
+    /// Texels touched by a boundary edge of their chart (they carry adjacency).
+    pub border_texels: usize,
+    /// Uncovered texels claimed by a boundary edge (the gutter ring around charts).
+    pub gutter_texels: usize,
+    /// Texels claimed by boundary edges of two or more charts (advice: more gutter or resolution).
+    pub conflicts: usize,
+    /// Texels whose centre lies in several UV triangles (overlapping UVs); the first face wins.
+    pub overlapping_texels: usize,
+    /// Charts that cover no texel centre at this resolution (smaller than a texel).
+    pub charts_without_texels: usize,
+}
+
+/// Per-texel surface source of a `resolution`² geometry buffer; texel `(i, j)` is at index
+/// `j * resolution + i` and centred at `((i + 0.5) / R, (j + 0.5) / R)` (v up).
+#[derive(Debug, Clone)]
+pub struct Coverage {
+    /// Texels per side.
+    pub resolution: usize,
+    /// Face shown by the texel (for gutter texels: the face of the closest boundary edge); -1 = empty.
+    pub face: Vec<i32>,
+    /// Barycentric coordinates of corners 1 and 2 of `face` at the point shown.
+    pub bary: Vec<[f32; 2]>,
+    /// Chart id; -1 = empty.
+    pub chart: Vec<i32>,
+    /// Boundary side (index into `Topology::sides`) closest to a border texel; -1 = not a border texel.
+    pub border_side: Vec<i32>,
+    /// Counts for reports.
+    pub diagnostics: CoverageDiagnostics,
+}
+
+impl Coverage {
+    /// Rasterises the charts of `topology` into a `resolution`² grid.
+    pub fn build(topology: &Topology, resolution: usize) -> Self {
+        let n = resolution * resolution;
+        let mut coverage = Self {
+            resolution,
+            face: vec![-1; n],
+            bary: vec![[0.0; 2]; n],
+            chart: vec![-1; n],
+            border_side: vec![-1; n],
+            diagnostics: CoverageDiagnostics::default(),
+        };
+        coverage.rasterise_triangles(topology);
+        coverage.rasterise_boundaries(topology);
+        coverage
+    }
+
+    fn rasterise_triangles(&mut self, topology: &Topology) {
+        let resolution = self.resolution;
+        let hits: Vec<TriangleHit> = (0..topology.faces.len())
+            .into_par_iter()
+            .filter(|&f| topology.face_chart[f] >= 0)
+            .fold(Vec::new, |mut out, f| {
+                rasterise_triangle(f as u32, topology.corner_uvs[f], resolution, &mut out);
+                out
+            })
+            .flatten_iter()
+            .collect();
+        let mut charts_seen = vec![false; topology.n_charts];
+        for hit in hits {
+            let t = hit.texel as usize;
+            if self.face[t] >= 0 {
+                self.diagnostics.overlapping_texels += 1;
+                continue;
+            }
+            let chart = topology.face_chart[hit.face as usize];
+            self.face[t] = hit.face as i32;
+            self.bary[t] = hit.bary;
+            self.chart[t] = chart;
+            charts_seen[chart as usize] = true;
+            self.diagnostics.covered_texels += 1;
+        }
+        self.diagnostics.charts_without_texels = charts_seen.iter().filter(|&&seen| !seen).count();
+    }
+
+    /// Triangle coverage has priority; an uncovered texel goes to the closest boundary edge.
+    fn rasterise_boundaries(&mut self, topology: &Topology) {
+        let resolution = self.resolution;
+        let mut hits: Vec<EdgeHit> = topology
+            .sides
+            .par_iter()
+            .enumerate()
+            .filter(|(_, side)| side.chart >= 0)
+            .fold(Vec::new, |mut out, (s, side)| {
+                let (_, [a, b]) = topology.side_endpoints(side);
+                rasterise_edge(s as u32, a, b, resolution, &mut out);
+                out
+            })
+            .flatten_iter()
+            .collect();
+        hits.par_sort_unstable_by(|x, y| {
+            (x.texel, x.distance, x.side).partial_cmp(&(y.texel, y.distance, y.side)).expect("finite distances")
+        });
+        for group in hits.chunk_by(|x, y| x.texel == y.texel) {
+            let t = group[0].texel as usize;
+            let chart_of = |h: &EdgeHit| topology.sides[h.side as usize].chart;
+            let first_chart = chart_of(&group[0]);
+            if group.iter().any(|h| chart_of(h) != first_chart) {
+                self.diagnostics.conflicts += 1;
+            }
+            if self.face[t] < 0 {
+                let closest = &group[0];
+                let side = &topology.sides[closest.side as usize];
+                let mut bary = [0.0f32; 3];
+                bary[side.local as usize] = 1.0 - closest.along;
+                bary[(side.local as usize + 1) % 3] = closest.along;
+                self.face[t] = side.face as i32;
+                self.bary[t] = [bary[1], bary[2]];
+                self.chart[t] = side.chart;
+                self.border_side[t] = closest.side as i32;
+                self.diagnostics.gutter_texels += 1;
+                self.diagnostics.border_texels += 1;
+            } else if let Some(own) = group.iter().find(|h| chart_of(h) == self.chart[t]) {
+                self.border_side[t] = own.side as i32;
+                self.diagnostics.border_texels += 1;
+            }
+        }
+    }
+
+    /// Approximate bytes per texel of coverage plus one frame of buffers, for memory checks.
+    pub const BYTES_PER_TEXEL: u64 = 20 + 36 + 24;
+}

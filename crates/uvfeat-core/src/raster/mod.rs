@@ -1,0 +1,10 @@
+//! Stage 2 of the pipeline (SPEC §1.3): rasterisation of the charts into parametric-space buffers.
+
+mod boundary;
+mod buffers;
+mod coverage;
+mod triangles;
+
+pub use buffers::{GeometryBuffers, Precision};
+pub use coverage::{Coverage, CoverageDiagnostics};
+pub(crate) use boundary::closest_on_segment;

@@ -1,0 +1,86 @@
+//! Relocation of parametric points that leave their chart (SPEC §1.5, paper §3.4, decisions
+//! A6–A8): march from the centre towards the sample, and where the march leaves the chart, carry
+//! the rest of the offset across the seam with the border texel's transition map.
+
+use crate::atlas::Atlas;
+use crate::raster::closest_on_segment;
+use glam::{DMat2, DVec2};
+
+/// Where a parametric point ends up.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Located {
+    /// The point lies in `chart` at `uv`; `m_path` is the product of the crossed seams' linear
+    /// maps (identity when none was crossed), so `|det m_path|` rescales parametric areas.
+    #[allow(missing_docs)]
+    Inside { chart: i32, uv: DVec2, m_path: DMat2, jumps: u32 },
+    /// The march reached the mesh border: the point is off the surface.
+    Border,
+    /// No border texel was found, or more than `max_jumps` seams were needed.
+    Missing,
+}
+
+/// Locates `target`, an offset of `start` in chart `chart` (SPEC §1.5 `locate`).
+///
+/// After a crossing, the march continues from the image of the crossing point (the closest point
+/// of the seam edge, which the transition map carries exactly onto the other side) rather than
+/// from the image of the last texel inside, which can fall just outside the new chart.
+pub fn locate(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: u32) -> Located {
+    let resolution = atlas.resolution() as f64;
+    let (mut origin, mut target, mut chart) = (start, target, chart);
+    let mut m_path = DMat2::IDENTITY;
+    let mut jumps = 0;
+    loop {
+        if atlas.chart_at(target) == chart {
+            return Located::Inside { chart, uv: target, m_path, jumps };
+        }
+        let offset = target - origin;
+        let steps = (offset.abs().max_element() * resolution).ceil().max(1.0);
+        let step = offset / steps;
+        let Some(exit) = (1..=steps as usize).find(|&k| atlas.chart_at(origin + step * k as f64) != chart) else {
+            return Located::Inside { chart, uv: target, m_path, jumps };
+        };
+        let last_inside = origin + step * (exit - 1) as f64;
+        let Some(texel) = border_texel(atlas, last_inside, chart) else { return Located::Missing };
+        let side_index = atlas.coverage.border_side[texel] as usize;
+        let side = &atlas.topology.sides[side_index];
+        let Some(map) = atlas.frame.seam_maps[side_index] else { return Located::Border };
+        if jumps == max_jumps {
+            return Located::Missing;
+        }
+        let (_, [a, b]) = atlas.topology.side_endpoints(side);
+        let (_, along) = closest_on_segment(a, b, last_inside);
+        origin = map.apply(a + (b - a) * along);
+        target = map.apply(target);
+        chart = side.adjacent_chart;
+        m_path = map.m * m_path;
+        jumps += 1;
+    }
+}
+
+/// The border texel of `chart` at `uv`, else the one of its 3x3 neighbourhood closest to `uv`.
+pub fn border_texel(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<usize> {
+    let coverage = &atlas.coverage;
+    atlas.nearest_texel(uv, |t| coverage.chart[t] == chart && coverage.border_side[t] >= 0)
+}
+
+/// A parametric point carried across a seam.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crossing {
+    /// Chart on the other side.
+    pub chart: i32,
+    /// The point in that chart's parametric frame.
+    pub uv: DVec2,
+    /// Linear part of the transition map used.
+    pub m: DMat2,
+    /// Boundary side whose map was used; its `reverse` side maps back exactly.
+    pub side: usize,
+}
+
+/// Maps `uv`, which must lie in (or next to) a border texel of `chart` with a seam across, to the
+/// chart on the other side with that texel's transition map (SPEC §1.3.4 `ADJ`).
+pub fn cross_seam(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Crossing> {
+    let texel = border_texel(atlas, uv, chart)?;
+    let side = atlas.coverage.border_side[texel] as usize;
+    let map = atlas.frame.seam_maps[side]?;
+    Some(Crossing { chart: atlas.topology.sides[side].adjacent_chart, uv: map.apply(uv), m: map.m, side })
+}

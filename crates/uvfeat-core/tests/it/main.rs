@@ -1,0 +1,8 @@
+//! Integration tests of the core, one module per pipeline stage.
+
+mod support;
+
+mod errors;
+mod metric;
+mod rasterisation;
+mod seams;

@@ -1,0 +1,32 @@
+//! Shared fixtures: analytic meshes turned into atlases.
+
+use glam::{DVec2, DVec3};
+use std::sync::Arc;
+use uvfeat_core::mesh::{Topology, TriangleMesh};
+use uvfeat_core::shapes::ShapeMesh;
+use uvfeat_core::{Atlas, AtlasOptions};
+
+pub fn triangle_mesh(shape: &ShapeMesh) -> TriangleMesh {
+    TriangleMesh::new(&shape.positions, &shape.faces, &shape.uvs, &shape.uv_faces).expect("valid analytic mesh")
+}
+
+pub fn atlas(shape: &ShapeMesh, resolution: usize) -> Atlas {
+    let mesh = triangle_mesh(shape);
+    let topology = Arc::new(Topology::build(&mesh, 0.0).expect("topology"));
+    let options = AtlasOptions { resolution, ..AtlasOptions::default() };
+    Atlas::new(topology, &mesh.positions, &options).expect("atlas")
+}
+
+/// Barycentric coordinates of `p` in the UV triangle `uv`.
+pub fn barycentric(uv: [DVec2; 3], p: DVec2) -> [f64; 3] {
+    let area2 = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]);
+    let b1 = (p - uv[0]).perp_dot(uv[2] - uv[0]) / area2;
+    let b2 = (uv[1] - uv[0]).perp_dot(p - uv[0]) / area2;
+    [1.0 - b1 - b2, b1, b2]
+}
+
+/// Exact interpolation of the face's geometric positions with barycentric weights `b`.
+pub fn interpolate(atlas: &Atlas, face: usize, b: [f64; 3]) -> DVec3 {
+    let tri = atlas.topology.faces[face];
+    (0..3).map(|k| atlas.frame.positions[tri[k] as usize] * b[k]).sum()
+}
