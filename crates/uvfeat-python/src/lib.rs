@@ -1,0 +1,20 @@
+//! `uvfeat._core`: the Python face of `uvfeat-core`. This crate only converts types and errors;
+//! every algorithm lives in the core crate.
+
+mod arrays;
+mod atlas;
+mod error;
+mod shapes;
+mod topology;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<topology::PyTopology>()?;
+    m.add_class::<atlas::PyAtlas>()?;
+    m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
+    m.add_function(wrap_pyfunction!(atlas::buffer_bytes, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,49 @@
+"""uvfeat: multi-scale geometric features of triangle meshes, computed in UV parameter space.
+
+Quick start::
+
+    import uvfeat
+    mesh = uvfeat.load("model.obj")            # or uvfeat.Mesh(positions, faces, uvs, uv_faces)
+    atlas = uvfeat.Atlas(mesh, resolution=1024)
+    atlas.position, atlas.normal, atlas.chart  # (R, R, ...) read-only NumPy buffers
+
+Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
+right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
+"""
+
+from . import errors, examples, shapes
+from ._core import __version__
+from .atlas import Atlas, Location, SeamCrossing
+from .errors import (
+    InvalidMeshError,
+    InvalidParameterError,
+    MeshFileError,
+    MeshWarning,
+    ResolutionTooLargeError,
+    UvfeatError,
+    UVError,
+    UVWarning,
+)
+from .io import SUPPORTED_FORMATS, load
+from .mesh import Mesh
+
+__all__ = [
+    "Atlas",
+    "InvalidMeshError",
+    "InvalidParameterError",
+    "Location",
+    "Mesh",
+    "MeshFileError",
+    "MeshWarning",
+    "ResolutionTooLargeError",
+    "SUPPORTED_FORMATS",
+    "SeamCrossing",
+    "UVError",
+    "UVWarning",
+    "UvfeatError",
+    "__version__",
+    "errors",
+    "examples",
+    "load",
+    "shapes",
+]

@@ -1,0 +1,239 @@
+"""The :class:`Atlas`: a mesh rasterised into parametric-space buffers (SPEC §1.3, paper Fig. 1).
+
+Buffers are ``(R, R, ...)`` arrays indexed ``[j, i]``: row ``j`` is the v index (v up, so row 0 is
+v = 0, the bottom of a picture) and texel ``(i, j)`` is centred at ``((i + 0.5)/R, (j + 0.5)/R)``.
+Empty texels hold NaN (float buffers) or -1 (ids).
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import time
+from typing import NamedTuple
+
+import numpy as np
+
+from . import _core
+from .errors import InvalidParameterError, ResolutionTooLargeError
+from .mesh import Mesh, _readonly
+
+PRECISIONS = ("f32", "f16")
+
+
+def memory_budget() -> int:
+    """Bytes the buffers of one atlas may take: half of the physical memory."""
+    try:
+        return int(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")) // 2
+    except (ValueError, OSError, AttributeError):
+        return 8 << 30
+
+
+def check_resolution(resolution, name: str = "resolution") -> int:
+    """A positive integer resolution, or a clear error."""
+    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) or resolution <= 0:
+        raise InvalidParameterError(f"{name} must be a positive integer, got {resolution!r}")
+    return int(resolution)
+
+
+class Location(NamedTuple):
+    """Where a parametric point ends up after relocation across seams (SPEC §1.5)."""
+
+    status: str
+    """"inside", "border" (the march left the surface at a mesh border) or "missing"."""
+    chart: int
+    uv: tuple[float, float] | None
+    m_path: np.ndarray | None
+    """Product of the crossed seams' 2x2 maps; ``abs(det)`` rescales parametric areas."""
+    jumps: int
+
+
+class SeamCrossing(NamedTuple):
+    """A point carried across the seam of its border texel."""
+
+    chart: int
+    uv: tuple[float, float]
+    m: np.ndarray
+    side: int
+
+
+class Atlas:
+    """Parametric-space buffers of a UV-mapped mesh at one resolution.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        A mesh with UVs (see :meth:`Mesh.with_atlas` for one without).
+    resolution : int, default 1024
+        Geometry-buffer size ``W_g`` (texels per side).
+    precision : {"f32", "f16"}
+        Storage of positions and normals; ``"f16"`` rounds them to half floats as the paper's GPU
+        textures do (Table 2), and the views are then float16.
+
+    Raises
+    ------
+    UVError
+        The mesh has no UVs or its UV map is degenerate.
+    InvalidParameterError, ResolutionTooLargeError
+        Resolution not a positive integer, or buffers larger than half of the memory (the message
+        says how much they would take).
+    """
+
+    def __init__(self, mesh: Mesh, resolution: int = 1024, precision: str = "f32"):
+        resolution = check_resolution(resolution)
+        if precision not in PRECISIONS:
+            raise InvalidParameterError(f"precision must be one of {PRECISIONS}, got {precision!r}")
+        budget = memory_budget()
+        needed = _core.buffer_bytes(resolution)
+        if needed > budget:
+            raise ResolutionTooLargeError(
+                f"resolution {resolution} needs about {needed >> 20} MiB of buffers, more than the "
+                f"{budget >> 20} MiB allowed (half of this machine's memory); choose a smaller resolution")
+        self.mesh = mesh
+        started = time.perf_counter()
+        topology = mesh.topology
+        self.timings = {"preprocessing_s": time.perf_counter() - started}
+        started = time.perf_counter()
+        self._core = _core.Atlas(topology, mesh.positions, resolution, precision, budget)
+        self.timings["rasterisation_s"] = time.perf_counter() - started
+
+    # -- configuration ------------------------------------------------------------------------
+    @property
+    def resolution(self) -> int:
+        return self._core.resolution
+
+    @property
+    def precision(self) -> str:
+        return self._core.precision
+
+    @property
+    def n_charts(self) -> int:
+        return self.mesh.topology.n_charts
+
+    # -- buffers (read-only, cached until update) ---------------------------------------------
+    @functools.cached_property
+    def position(self) -> np.ndarray:
+        """(R, R, 3) surface position shown by each texel (object units; NaN when empty)."""
+        return _readonly(self._core.position)
+
+    @functools.cached_property
+    def normal(self) -> np.ndarray:
+        """(R, R, 3) unit normal (outward; NaN when empty)."""
+        return _readonly(self._core.normal)
+
+    @functools.cached_property
+    def sigma(self) -> np.ndarray:
+        """(R, R, 2) float32 ``(sigma_1, sigma_2)``, object units per uv unit, ``sigma_1 >= sigma_2``."""
+        return _readonly(self._core.sigma)
+
+    @functools.cached_property
+    def theta(self) -> np.ndarray:
+        """(R, R) float32 angle (radians) from +u of the ``sigma_1`` axis."""
+        return _readonly(self._core.theta)
+
+    @functools.cached_property
+    def chart(self) -> np.ndarray:
+        """(R, R) int32 chart id, -1 for empty texels."""
+        return _readonly(self._core.chart)
+
+    @functools.cached_property
+    def face(self) -> np.ndarray:
+        """(R, R) int32 triangle shown by each texel, -1 for empty texels."""
+        return _readonly(self._core.face)
+
+    @functools.cached_property
+    def border(self) -> np.ndarray:
+        """(R, R) bool: texel touched by a boundary edge of its chart (carries adjacency)."""
+        return _readonly(self._core.border)
+
+    @functools.cached_property
+    def adjacent_chart(self) -> np.ndarray:
+        """(R, R) int32 chart across the closest boundary edge of a border texel; -1 elsewhere and
+        where the mesh itself ends."""
+        return _readonly(self._core.adjacent_chart)
+
+    @functools.cached_property
+    def border_side(self) -> np.ndarray:
+        """(R, R) int32 boundary side (edge of a face) closest to each border texel, -1 elsewhere."""
+        return _readonly(self._core.border_side)
+
+    _FRAME_BUFFERS = ("position", "normal", "sigma", "theta")
+
+    def update(self, positions) -> None:
+        """Re-evaluates the buffers for new vertex positions (an animation frame): normals,
+        metrics, seam maps and buffers are recomputed; charts, coverage and adjacency are reused."""
+        positions = np.ascontiguousarray(positions, dtype=np.float64)
+        started = time.perf_counter()
+        self._core.update(positions)
+        self.timings["update_s"] = time.perf_counter() - started
+        for name in self._FRAME_BUFFERS:
+            self.__dict__.pop(name, None)
+
+    # -- diagnostics ------------------------------------------------------------------------------
+    @property
+    def diagnostics(self) -> dict:
+        """Counts from pre-processing and rasterisation (degenerate UV faces, non-manifold edges,
+        conflicts, overlapping texels, charts smaller than a texel, ...)."""
+        out = dict(self.mesh.topology.diagnostics)
+        out.update(self._core.diagnostics)
+        out["precision"] = self.precision
+        return out
+
+    def warnings(self) -> list[str]:
+        """Plain-language warnings about the diagnostics, empty when all is well."""
+        d = self.diagnostics
+        notes = []
+        if d["degenerate_uv_faces"]:
+            notes.append(f"{d['degenerate_uv_faces']} faces have zero-area UV triangles: skipped, their edges act as borders")
+        if d["non_manifold_edges"]:
+            notes.append(f"{d['non_manifold_edges']} non-manifold edges (more than two faces): treated as borders")
+        if d["overlapping_texels"]:
+            notes.append(f"{d['overlapping_texels']} texels are covered by several triangles (overlapping UVs): "
+                         "features there are wrong; re-atlas with uv='xatlas'")
+        if d["conflicts"]:
+            notes.append(f"{d['conflicts']} texels are claimed by edges of several charts: more gutter or resolution helps")
+        if d["charts_without_texels"]:
+            notes.append(f"{d['charts_without_texels']} charts are smaller than a texel at {d['resolution']}²")
+        return notes
+
+    def summary(self) -> str:
+        d = self.diagnostics
+        lines = [f"{self.mesh.name}: {d['faces']} faces, {d['geometric_vertices']} welded vertices, {d['charts']} charts",
+                 f"buffers {d['resolution']}² ({d['precision']}): {d['covered_texels']} covered texels, "
+                 f"{d['border_texels']} border texels ({d['gutter_texels']} in gutters)",
+                 f"edges: {d['interior_edges']} interior, {d['seam_edges']} seam, {d['border_edges']} border, "
+                 f"{d['non_manifold_edges']} non-manifold"]
+        return "\n".join(lines + [f"warning: {w}" for w in self.warnings()])
+
+    # -- parametric queries ---------------------------------------------------------------------
+    def chart_at(self, uv) -> int:
+        """Chart id of the texel containing ``uv`` (-1 when empty or outside [0, 1)^2)."""
+        r = self.resolution
+        i, j = int(np.floor(uv[0] * r)), int(np.floor(uv[1] * r))
+        return int(self.chart[j, i]) if 0 <= i < r and 0 <= j < r else -1
+
+    def _chart_of(self, uv, chart: int | None) -> int:
+        chart = self.chart_at(uv) if chart is None else int(chart)
+        if chart < 0:
+            raise InvalidParameterError(f"uv {tuple(uv)} is not on a chart; pass chart= explicitly")
+        return chart
+
+    def locate(self, start, target, chart: int | None = None, max_jumps: int = 3) -> Location:
+        """Relocates ``target``, an offset of ``start`` (in ``chart``, default: the chart at
+        ``start``), across seams (SPEC §1.5)."""
+        status, landed, uv, m, jumps = self._core.locate(tuple(map(float, start)), self._chart_of(start, chart),
+                                                         tuple(map(float, target)), int(max_jumps))
+        return Location(status, landed, uv, None if m is None else np.array(m), jumps)
+
+    def cross_seam(self, uv, chart: int | None = None) -> SeamCrossing | None:
+        """Maps ``uv`` in a border texel across its seam (``None`` where the mesh itself ends)."""
+        out = self._core.cross_seam(tuple(map(float, uv)), self._chart_of(uv, chart))
+        return None if out is None else SeamCrossing(out[0], out[1], np.array(out[2]), out[3])
+
+    def surface_point(self, uv, chart: int | None = None):
+        """``(position, normal, face)`` of the surface at ``uv`` (exact triangle lookup), or None."""
+        out = self._core.surface_point(tuple(map(float, uv)), self._chart_of(uv, chart))
+        return None if out is None else (np.array(out[0]), np.array(out[1]), out[2])
+
+    def __repr__(self) -> str:
+        return f"<uvfeat.Atlas of {self.mesh.name!r}: {self.resolution}², {self.n_charts} charts, {self.precision}>"

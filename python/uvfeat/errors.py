@@ -1,0 +1,37 @@
+"""Exceptions raised by uvfeat. Every message names the problem and, where there is one, the fix.
+
+All derive from :class:`UvfeatError`; each also derives from the built-in exception a caller
+would expect (``ValueError`` for bad values, ``OSError`` for files, ``MemoryError`` for sizes).
+"""
+
+
+class UvfeatError(Exception):
+    """Base class of every uvfeat error."""
+
+
+class InvalidMeshError(UvfeatError, ValueError):
+    """The mesh cannot be used: empty, NaN/Inf positions, bad indices, wrong array shapes..."""
+
+
+class UVError(InvalidMeshError):
+    """The UV map cannot be used: missing, NaN/Inf, outside [0, 1] or degenerate."""
+
+
+class InvalidParameterError(UvfeatError, ValueError):
+    """A parameter (resolution, radius, precision, ...) is outside its valid range."""
+
+
+class ResolutionTooLargeError(InvalidParameterError, MemoryError):
+    """The requested buffers would not fit in memory; the message says how much they need."""
+
+
+class MeshFileError(UvfeatError, OSError):
+    """A mesh file is missing, unreadable or of an unsupported format."""
+
+
+class UVWarning(UserWarning):
+    """The UVs were changed (normalised into [0, 1]) or look suspicious (overlaps, tiny charts)."""
+
+
+class MeshWarning(UserWarning):
+    """The mesh was changed on load (polygons triangulated) or has defects uvfeat works around."""

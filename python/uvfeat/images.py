@@ -1,0 +1,106 @@
+"""Pictures of parametric-space buffers (paper Fig. 1): PNG files, v up."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+
+def _to_image(rgba: np.ndarray) -> np.ndarray:
+    """(R, R, 4) floats in [0, 1], row 0 = v = 0 -> uint8 picture with v up."""
+    return (np.clip(np.flipud(rgba), 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
+
+
+def save_png(path: str | os.PathLike, rgba: np.ndarray) -> None:
+    """Writes an (R, R, 3|4) float image in [0, 1] (buffer orientation) as PNG."""
+    from PIL import Image
+
+    Image.fromarray(_to_image(rgba)).save(os.fspath(path))
+
+
+def _with_alpha(rgb: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    rgba = np.zeros(mask.shape + (4,), dtype=np.float64)
+    rgba[mask, :3] = rgb[mask]
+    rgba[mask, 3] = 1.0
+    return rgba
+
+
+def position_image(position: np.ndarray) -> np.ndarray:
+    """Positions normalised to RGB by the bounding box (empty texels transparent)."""
+    position = position.astype(np.float64)
+    mask = np.isfinite(position).all(axis=-1)
+    low = position[mask].min(axis=0)
+    extent = np.maximum(position[mask].max(axis=0) - low, 1e-300)
+    return _with_alpha(np.where(mask[..., None], (position - low) / extent, 0.0), mask)
+
+
+def normal_image(normal: np.ndarray) -> np.ndarray:
+    """Unit normals mapped to RGB as ``(n + 1) / 2``."""
+    normal = normal.astype(np.float64)
+    mask = np.isfinite(normal).all(axis=-1)
+    return _with_alpha(np.where(mask[..., None], (normal + 1.0) / 2.0, 0.0), mask)
+
+
+def chart_colours(n: int) -> np.ndarray:
+    """(n, 3) distinct, deterministic colours (golden-ratio hue walk, matplotlib HSV->RGB)."""
+    from matplotlib.colors import hsv_to_rgb
+
+    k = np.arange(max(n, 1))
+    hsv = np.stack([(k * 0.6180339887) % 1.0, 0.55 + 0.35 * ((k * 7) % 3) / 2, 0.75 + 0.2 * ((k * 5) % 2)], axis=1)
+    return hsv_to_rgb(hsv)[:n]
+
+
+def chart_image(chart: np.ndarray, border: np.ndarray, adjacent_chart: np.ndarray) -> np.ndarray:
+    """Chart ids colourised; border texels in the colour of the chart across the seam (darkened),
+    texels on a mesh border white (paper Fig. 1d)."""
+    mask = chart >= 0
+    colours = chart_colours(int(chart.max()) + 1 if mask.any() else 1)
+    rgb = np.zeros(chart.shape + (3,))
+    rgb[mask] = colours[chart[mask]]
+    seam = border & (adjacent_chart >= 0)
+    rgb[seam] = 0.6 * colours[adjacent_chart[seam]]
+    rgb[border & (adjacent_chart < 0)] = 1.0
+    return _with_alpha(rgb, mask)
+
+
+def scalar_image(values: np.ndarray, cmap: str = "viridis", *, low: float | None = None, high: float | None = None,
+                 percentiles: tuple[float, float] = (1.0, 99.0)) -> tuple[np.ndarray, float, float]:
+    """A scalar map through a matplotlib colormap, clamped at robust percentiles unless
+    ``low``/``high`` are given; NaN texels transparent. Returns ``(rgba, low, high)``."""
+    import matplotlib
+
+    mask = np.isfinite(values)
+    finite = values[mask]
+    if low is None or high is None:
+        lo, hi = np.percentile(finite, percentiles) if finite.size else (0.0, 1.0)
+        low = lo if low is None else low
+        high = hi if high is None else high
+    span = high - low if high > low else 1.0
+    rgb = matplotlib.colormaps[cmap](np.clip((np.where(mask, values, low) - low) / span, 0.0, 1.0))[..., :3]
+    return _with_alpha(rgb, mask), float(low), float(high)
+
+
+def distortion_image(sigma: np.ndarray) -> np.ndarray:
+    """Anisotropy ``sigma_1 / sigma_2`` (1 = conformal), log-scaled, viridis."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.log2(sigma[..., 0].astype(np.float64) / sigma[..., 1])
+    ratio[~np.isfinite(ratio)] = np.nan
+    rgba, _, _ = scalar_image(ratio, "viridis", percentiles=(0.0, 99.0))
+    return rgba
+
+
+def save_atlas_pictures(atlas, out_dir: str | os.PathLike) -> dict[str, str]:
+    """Writes position, normal, chart and distortion pictures of an atlas; returns their paths."""
+    os.makedirs(out_dir, exist_ok=True)
+    pictures = {
+        "position": position_image(atlas.position),
+        "normal": normal_image(atlas.normal),
+        "charts": chart_image(atlas.chart, atlas.border, atlas.adjacent_chart),
+        "distortion": distortion_image(atlas.sigma),
+    }
+    paths = {}
+    for name, rgba in pictures.items():
+        paths[name] = os.path.join(os.fspath(out_dir), f"{name}.png")
+        save_png(paths[name], rgba)
+    return paths

@@ -1,0 +1,112 @@
+"""Loading meshes from files (glTF/GLB, OBJ, PLY, OFF, STL, ...) through trimesh."""
+
+from __future__ import annotations
+
+import os
+import warnings
+
+import numpy as np
+
+from .errors import InvalidMeshError, MeshFileError, UVError, UVWarning
+from .mesh import Mesh
+
+#: File extensions uvfeat reads (through trimesh).
+SUPPORTED_FORMATS = ("obj", "ply", "glb", "gltf", "off", "stl")
+
+#: What ``load(..., uv=...)`` accepts.
+UV_POLICIES = ("auto", "require", "xatlas")
+
+
+def _trimesh_geometry(path: str):
+    import trimesh
+
+    try:
+        loaded = trimesh.load(path, process=False)
+    except Exception as exc:  # trimesh raises many types for broken files
+        raise MeshFileError(f"cannot read {path!r}: {exc}") from exc
+    if isinstance(loaded, trimesh.Scene):
+        meshes = [g for g in loaded.dump() if isinstance(g, trimesh.Trimesh)] if loaded.geometry else []
+        if not meshes:
+            raise InvalidMeshError(f"{path!r} contains no triangle mesh")
+        return meshes
+    if not isinstance(loaded, trimesh.Trimesh):
+        raise InvalidMeshError(f"{path!r} holds a {type(loaded).__name__}, not a triangle mesh")
+    return [loaded]
+
+
+def _uvs_of(geometry) -> np.ndarray | None:
+    uv = getattr(getattr(geometry, "visual", None), "uv", None)
+    if uv is None or len(uv) != len(geometry.vertices):
+        return None
+    return np.asarray(uv, dtype=np.float64)
+
+
+def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, normalize_uv: bool = True) -> Mesh:
+    """Reads a mesh file into a :class:`~uvfeat.Mesh`.
+
+    Scenes with several meshes or primitives are merged into one mesh, with their node transforms
+    applied. Vertices split at UV or normal seams (glTF, PLY) are kept as they are in the file, so
+    per-vertex results line up with the file's vertices; uvfeat welds them internally.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        A file of one of :data:`SUPPORTED_FORMATS`.
+    uv : {"auto", "require", "xatlas"}
+        ``"auto"`` (default) keeps the file's UVs and builds an xatlas atlas when there are none;
+        ``"require"`` raises :class:`~uvfeat.errors.UVError` instead; ``"xatlas"`` always builds
+        a new atlas (use it for overlapping or tiled UVs).
+    resolution : int
+        Geometry-buffer resolution an automatic atlas is packed for (2+ texel gutters there).
+    normalize_uv : bool
+        See :class:`~uvfeat.Mesh`.
+
+    Raises
+    ------
+    MeshFileError
+        Missing, unreadable or unsupported file.
+    InvalidMeshError, UVError
+        As for :class:`~uvfeat.Mesh`.
+    """
+    if uv not in UV_POLICIES:
+        raise ValueError(f"uv must be one of {UV_POLICIES}, got {uv!r}")
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise MeshFileError(f"no such file: {path!r}")
+    if not os.path.isfile(path) or not os.access(path, os.R_OK):
+        raise MeshFileError(f"not a readable file: {path!r}")
+    extension = os.path.splitext(path)[1].lower().lstrip(".")
+    if extension not in SUPPORTED_FORMATS:
+        raise MeshFileError(f"unsupported format {extension!r} of {path!r}; supported: {', '.join(SUPPORTED_FORMATS)}")
+    parts = _trimesh_geometry(path)
+    positions = np.concatenate([np.asarray(g.vertices, dtype=np.float64) for g in parts])
+    offsets = np.cumsum([0] + [len(g.vertices) for g in parts])[:-1]
+    faces = np.concatenate([np.asarray(g.faces, dtype=np.int64) + o for g, o in zip(parts, offsets)])
+    part_uvs = [_uvs_of(g) for g in parts]
+    name = os.path.basename(path)
+    has_uvs = all(u is not None for u in part_uvs)
+    if uv == "xatlas" or not has_uvs:
+        if uv == "require":
+            missing = "some of its meshes have" if any(u is not None for u in part_uvs) else "it has"
+            raise UVError(f"{name}: {missing} no UV coordinates; use uv='auto' for an automatic atlas")
+        mesh = Mesh(positions, faces, name=name)
+        return mesh.with_atlas(resolution=resolution)
+    if len(parts) > 1:
+        part_uvs = _tile_part_uvs(part_uvs)
+        warnings.warn(f"{name}: {len(parts)} meshes merged; their UV layouts were tiled side by side into one "
+                      "atlas so they do not overlap", UVWarning, stacklevel=2)
+    return Mesh(positions, faces, np.concatenate(part_uvs), name=name, normalize_uv=normalize_uv)
+
+
+def _tile_part_uvs(part_uvs: list[np.ndarray], margin: float = 0.01) -> list[np.ndarray]:
+    """Places each part's UV layout (normalised to the unit square) in its own cell of a grid."""
+    from .mesh import normalize_uvs
+
+    side = int(np.ceil(np.sqrt(len(part_uvs))))
+    cell = 1.0 / side
+    tiled = []
+    for k, uvs in enumerate(part_uvs):
+        unit, _ = normalize_uvs(uvs)
+        corner = np.array([k % side, k // side], dtype=np.float64) * cell
+        tiled.append(corner + cell * (margin + (1.0 - 2.0 * margin) * unit))
+    return tiled

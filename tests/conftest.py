@@ -1,0 +1,27 @@
+"""Shared fixtures: analytic meshes are built in code; real meshes come from ../shared/meshes
+(or $UVFEAT_SHARED_MESHES) and their tests skip when that folder is absent."""
+
+import os
+import pathlib
+
+import pytest
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+
+
+def shared_meshes_dir() -> pathlib.Path | None:
+    folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", REPO.parent / "shared" / "meshes"))
+    return folder if folder.is_dir() else None
+
+
+@pytest.fixture
+def shared_mesh():
+    """Path of a mesh in the shared folder, or skip."""
+
+    def get(name: str) -> str:
+        folder = shared_meshes_dir()
+        if folder is None or not (folder / name).exists():
+            pytest.skip(f"shared mesh {name} not available")
+        return str(folder / name)
+
+    return get

@@ -1,0 +1,69 @@
+import os
+
+import numpy as np
+import pytest
+import trimesh
+
+import uvfeat
+from uvfeat import MeshFileError, UVError
+
+
+def _trimesh_with_uv(mesh: uvfeat.Mesh) -> trimesh.Trimesh:
+    """Per-vertex-UV copy (vertices split per corner, as glTF does)."""
+    corners = mesh.faces.reshape(-1)
+    uv = mesh.uvs[mesh.uv_faces.reshape(-1)]
+    faces = np.arange(len(corners)).reshape(-1, 3)
+    return trimesh.Trimesh(mesh.positions[corners], faces, visual=trimesh.visual.TextureVisuals(uv=uv), process=False)
+
+
+def test_missing_unreadable_and_unsupported_files(tmp_path):
+    with pytest.raises(MeshFileError, match="no such file"):
+        uvfeat.load(tmp_path / "nope.obj")
+    (tmp_path / "mesh.xyz").write_text("1 2 3\n")
+    with pytest.raises(MeshFileError, match="unsupported format 'xyz'"):
+        uvfeat.load(tmp_path / "mesh.xyz")
+    (tmp_path / "broken.glb").write_bytes(b"\x00garbage" * 10)
+    with pytest.raises(MeshFileError, match="cannot read"):
+        uvfeat.load(tmp_path / "broken.glb")
+    with pytest.raises(MeshFileError, match="not a readable file"):
+        uvfeat.load(tmp_path)
+
+
+def test_empty_file_is_an_error(tmp_path):
+    (tmp_path / "empty.obj").write_text("# nothing\n")
+    with pytest.raises((uvfeat.InvalidMeshError, MeshFileError)):
+        uvfeat.load(tmp_path / "empty.obj")
+
+
+@pytest.mark.parametrize("extension", ["glb", "ply", "obj"])
+def test_round_trip_through_files_keeps_charts_and_welds_seams(tmp_path, extension):
+    torus = uvfeat.shapes.torus(2.0, 0.5, 32, 16)
+    path = tmp_path / f"torus.{extension}"
+    _trimesh_with_uv(torus).export(path)
+    loaded = uvfeat.load(path, uv="require")
+    assert loaded.n_faces == torus.n_faces
+    assert loaded.n_charts == 1
+    assert len(np.unique(loaded.vertex_ids)) == torus.n_vertices  # every split vertex welded back
+
+
+def test_file_without_uvs_gets_an_xatlas_atlas_or_a_clear_error(tmp_path):
+    path = tmp_path / "ico.obj"
+    trimesh.creation.icosphere(3).export(path)
+    with pytest.raises(UVError, match="no UV coordinates"):
+        uvfeat.load(path, uv="require")
+    mesh = uvfeat.load(path)
+    assert mesh.has_uvs and mesh.n_charts > 1
+
+
+def test_multi_mesh_scene_is_merged_with_non_overlapping_uvs(tmp_path):
+    a = _trimesh_with_uv(uvfeat.shapes.uv_sphere(1.0, 24, 12))
+    b = _trimesh_with_uv(uvfeat.shapes.torus(2.0, 0.5, 24, 12))
+    b.apply_translation([5.0, 0, 0])
+    path = tmp_path / "scene.glb"
+    trimesh.Scene([a, b]).export(path)
+    with pytest.warns(uvfeat.UVWarning, match="tiled"):
+        mesh = uvfeat.load(path)
+    assert mesh.n_faces == len(a.faces) + len(b.faces)
+    assert mesh.n_charts == 2
+    atlas = uvfeat.Atlas(mesh, 256)
+    assert atlas.diagnostics["overlapping_texels"] == 0

@@ -1,0 +1,38 @@
+"""Real meshes from ../shared/meshes (skipped when absent). Licences: see that folder's README."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import uvfeat
+
+UV_MESHES = {"spot_triangulated.obj": 13, "bob_tri.obj": 3, "blub.obj": 5, "pizza.obj": 4740, "Fox.glb": 14}
+
+
+@pytest.mark.shared
+@pytest.mark.parametrize("name, charts", UV_MESHES.items())
+def test_uv_mapped_meshes_rasterise(shared_mesh, name, charts):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", uvfeat.UVWarning)
+        mesh = uvfeat.load(shared_mesh(name), uv="require")
+    assert mesh.n_charts == charts
+    atlas = uvfeat.Atlas(mesh, 1024)
+    d = atlas.diagnostics
+    assert d["overlapping_texels"] == 0 and d["non_manifold_edges"] == 0
+    assert d["covered_texels"] > 0.15 * 1024**2
+    # Every seam texel has a chart across; mesh-border texels only where the mesh has a border.
+    seam_texels = atlas.border & (atlas.adjacent_chart >= 0)
+    assert seam_texels.sum() > 0
+    if d["border_edges"] == 0:
+        assert not (atlas.border & (atlas.adjacent_chart < 0)).any()
+
+
+@pytest.mark.shared
+@pytest.mark.parametrize("name", ["stanford-bunny.obj", "armadillo.obj", "dragon.obj"])
+def test_scans_without_uvs_get_an_xatlas_atlas(shared_mesh, name):
+    mesh = uvfeat.load(shared_mesh(name))
+    assert mesh.n_charts > 100
+    atlas = uvfeat.Atlas(mesh, 1024)
+    assert atlas.diagnostics["covered_texels"] > 0.1 * 1024**2
+    assert np.isfinite(atlas.position[atlas.chart >= 0]).all()
