@@ -64,7 +64,7 @@ impl Atlas {
     /// Vertex count mismatch or non-finite positions; the atlas is unchanged then.
     pub fn update(&mut self, positions: &[DVec3]) -> Result<()> {
         let frame = Frame::new(&self.topology, positions)?;
-        self.buffers = GeometryBuffers::evaluate(&self.topology, &self.coverage, &frame, self.precision);
+        self.buffers.refresh(&self.topology, &self.coverage, &frame, self.precision);
         self.frame = frame;
         Ok(())
     }

@@ -50,13 +50,19 @@ impl GeometryBuffers {
             sigma: vec![[f32::NAN; 2]; n],
             theta: vec![f32::NAN; n],
         };
-        let row = coverage.resolution;
+        buffers.refresh(topology, coverage, frame, precision);
         buffers
-            .position
+    }
+
+    /// Overwrites the covered texels for a new frame of the same coverage (empty texels keep
+    /// their NaN), so animation frames allocate nothing.
+    pub fn refresh(&mut self, topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) {
+        let row = coverage.resolution;
+        self.position
             .par_chunks_mut(row)
-            .zip(buffers.normal.par_chunks_mut(row))
-            .zip(buffers.sigma.par_chunks_mut(row))
-            .zip(buffers.theta.par_chunks_mut(row))
+            .zip(self.normal.par_chunks_mut(row))
+            .zip(self.sigma.par_chunks_mut(row))
+            .zip(self.theta.par_chunks_mut(row))
             .enumerate()
             .for_each(|(j, (((position, normal), sigma), theta))| {
                 for i in 0..row {
@@ -77,6 +83,5 @@ impl GeometryBuffers {
                     theta[i] = d.theta as f32;
                 }
             });
-        buffers
     }
 }
