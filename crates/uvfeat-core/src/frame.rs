@@ -4,8 +4,61 @@
 use crate::distortion::Distortion;
 use crate::error::Result;
 use crate::mesh::{seam_maps, vertex_normals, Jacobian, SeamMap, Topology};
-use glam::DVec3;
+use glam::{DMat2, DVec2, DVec3};
 use rayon::prelude::*;
+
+/// A face's affine parameterisation for the frame: `P(uv) = x0 + J (uv - uv0)` and the
+/// (unnormalised) interpolated normal `N(uv) = n0 + J_N (uv - uv0)`. Barycentric interpolation is
+/// affine in uv, so this is exact, and two multiply-adds per coordinate evaluate it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceMap {
+    /// UV of corner 0.
+    pub uv0: DVec2,
+    /// Position of corner 0.
+    pub x0: DVec3,
+    /// `J = [P_u, P_v]`.
+    pub jacobian: Jacobian,
+    /// Vertex normal of corner 0.
+    pub n0: DVec3,
+    /// `dN/du` of the interpolated (unnormalised) normal.
+    pub nu: DVec3,
+    /// `dN/dv` of the interpolated normal.
+    pub nv: DVec3,
+    /// Area element `J = |P_u x P_v|` (object area per uv area).
+    pub area_element: f64,
+}
+
+impl FaceMap {
+    fn new(x: [DVec3; 3], n: [DVec3; 3], uv: [DVec2; 3]) -> Option<Self> {
+        let inv = DMat2::from_cols(uv[1] - uv[0], uv[2] - uv[0]);
+        if inv.determinant() == 0.0 {
+            return None;
+        }
+        let inv = inv.inverse();
+        let gradient = |v: [DVec3; 3]| {
+            let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
+            (e1 * inv.x_axis.x + e2 * inv.x_axis.y, e1 * inv.y_axis.x + e2 * inv.y_axis.y)
+        };
+        let (pu, pv) = gradient(x);
+        let (nu, nv) = gradient(n);
+        let jacobian = Jacobian { pu, pv };
+        Some(Self { uv0: uv[0], x0: x[0], jacobian, n0: n[0], nu, nv, area_element: pu.cross(pv).length() })
+    }
+
+    /// Position at `uv` (extrapolates linearly outside the face).
+    #[inline]
+    pub fn position(&self, uv: DVec2) -> DVec3 {
+        let d = uv - self.uv0;
+        self.x0 + self.jacobian.pu * d.x + self.jacobian.pv * d.y
+    }
+
+    /// Unit normal at `uv` (interpolated vertex normals, renormalised).
+    #[inline]
+    pub fn normal(&self, uv: DVec2) -> DVec3 {
+        let d = uv - self.uv0;
+        (self.n0 + self.nu * d.x + self.nv * d.y).normalize_or_zero()
+    }
+}
 
 /// Positions, normals, triangle metrics and seam maps of one frame.
 #[derive(Debug, Clone)]
@@ -14,12 +67,12 @@ pub struct Frame {
     pub positions: Vec<DVec3>,
     /// (n_geometric) unit vertex normals.
     pub normals: Vec<DVec3>,
-    /// (n_faces) Jacobian of each face; `None` for a degenerate UV triangle.
-    pub jacobians: Vec<Option<Jacobian>>,
     /// (n_faces) distortion of each face (zeros where the Jacobian is missing).
     pub distortion: Vec<Distortion>,
     /// (n_sides) transition map of each boundary side; `None` where nothing is across.
     pub seam_maps: Vec<Option<SeamMap>>,
+    /// (n_faces) affine position and normal maps; `None` for a degenerate UV triangle.
+    pub face_maps: Vec<Option<FaceMap>>,
 }
 
 impl Frame {
@@ -30,22 +83,22 @@ impl Frame {
     pub fn new(topology: &Topology, input_positions: &[DVec3]) -> Result<Self> {
         let positions = topology.geometric_positions(input_positions)?;
         let normals = vertex_normals(&positions, &topology.faces);
-        let jacobians: Vec<Option<Jacobian>> = topology
+        let seam_maps = seam_maps(topology, &positions);
+        let face_maps: Vec<Option<FaceMap>> = topology
             .faces
             .par_iter()
             .zip(&topology.corner_uvs)
             .zip(&topology.face_chart)
             .map(|((tri, uv), &chart)| {
-                if chart < 0 {
-                    return None;
-                }
-                Jacobian::of_triangle(tri.map(|v| positions[v as usize]), *uv)
+                let gather = |values: &[DVec3]| tri.map(|v| values[v as usize]);
+                (chart >= 0).then(|| FaceMap::new(gather(&positions), gather(&normals), *uv)).flatten()
             })
             .collect();
         let zero = Distortion { sigma1: 0.0, sigma2: 0.0, theta: 0.0 };
-        let distortion =
-            jacobians.par_iter().map(|j| j.map_or(zero, |j| Distortion::from_metric(j.metric()))).collect();
-        let seam_maps = seam_maps(topology, &positions);
-        Ok(Self { positions, normals, jacobians, distortion, seam_maps })
+        let distortion = face_maps
+            .par_iter()
+            .map(|m| m.map_or(zero, |m| Distortion::from_metric(m.jacobian.metric())))
+            .collect();
+        Ok(Self { positions, normals, distortion, seam_maps, face_maps })
     }
 }
