@@ -16,11 +16,14 @@
 pub mod atlas;
 pub mod distortion;
 pub mod error;
+pub mod features;
 pub mod frame;
 pub mod lookup;
 pub mod mesh;
+pub mod output;
 pub mod raster;
 pub mod relocation;
+pub mod sampling;
 pub mod shapes;
 
 pub use atlas::{Atlas, AtlasOptions};

@@ -3,6 +3,7 @@
 mod support;
 
 mod errors;
+mod features;
 mod metric;
 mod rasterisation;
 mod seams;

@@ -1,0 +1,199 @@
+//! Stage 5 of the pipeline (SPEC §2): the feature estimators, each a small function of the
+//! weighted sums of one neighbourhood.
+
+mod bending_energy;
+mod curvedness;
+mod gaussian_curvature;
+mod mean_curvature;
+mod open_volume;
+mod principal_curvatures;
+mod shape_index;
+mod statistics;
+mod volume_invariant;
+
+pub use bending_energy::bending_energy;
+pub use curvedness::curvedness;
+pub use gaussian_curvature::{
+    gaussian_curvature_geodesic_area, gaussian_curvature_geodesic_area_error, gaussian_curvature_moments,
+    GaussianMethod,
+};
+pub use mean_curvature::{mean_curvature, mean_curvature_error};
+pub use open_volume::{ball_volume, open_volume, open_volume_error};
+pub use principal_curvatures::principal_curvatures;
+pub use shape_index::shape_index;
+pub use statistics::{NeighbourhoodStats, StatsSettings, VolumeWeighting, WeightedSums};
+pub use volume_invariant::volume_invariant;
+
+use crate::error::{Result, UvfeatError};
+
+/// The features uvfeat estimates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Feature {
+    /// Local bending energy, 1/length^2.
+    BendingEnergy,
+    /// Open sphere volume `V_o`, length^3.
+    OpenVolume,
+    /// Sphere-volume integral invariant `V_r`, length^3.
+    VolumeInvariant,
+    /// Mean curvature `H`, 1/length.
+    MeanCurvature,
+    /// Gaussian curvature `K`, 1/length^2.
+    GaussianCurvature,
+    /// Largest principal curvature `k1`, 1/length.
+    K1,
+    /// Smallest principal curvature `k2`, 1/length.
+    K2,
+    /// Shape index, dimensionless.
+    ShapeIndex,
+    /// Curvedness, 1/length.
+    Curvedness,
+}
+
+impl Feature {
+    /// Every feature, in output order.
+    pub const ALL: [Feature; 9] = [
+        Feature::BendingEnergy,
+        Feature::OpenVolume,
+        Feature::VolumeInvariant,
+        Feature::MeanCurvature,
+        Feature::GaussianCurvature,
+        Feature::K1,
+        Feature::K2,
+        Feature::ShapeIndex,
+        Feature::Curvedness,
+    ];
+
+    /// Public name (Python, CLI, files).
+    pub fn name(self) -> &'static str {
+        match self {
+            Feature::BendingEnergy => "bending_energy",
+            Feature::OpenVolume => "open_volume",
+            Feature::VolumeInvariant => "volume_invariant",
+            Feature::MeanCurvature => "mean_curvature",
+            Feature::GaussianCurvature => "gaussian_curvature",
+            Feature::K1 => "k1",
+            Feature::K2 => "k2",
+            Feature::ShapeIndex => "shape_index",
+            Feature::Curvedness => "curvedness",
+        }
+    }
+
+    /// The feature of a public name.
+    ///
+    /// # Errors
+    /// [`UvfeatError::InvalidParameter`] listing the valid names.
+    pub fn from_name(name: &str) -> Result<Self> {
+        Self::ALL.into_iter().find(|f| f.name() == name).ok_or_else(|| UvfeatError::InvalidParameter {
+            name: "feature",
+            reason: format!(
+                "unknown feature {name:?}; valid: {}",
+                Self::ALL.map(Feature::name).join(", ")
+            ),
+        })
+    }
+
+    /// Position in [`Feature::ALL`].
+    pub fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// Settings of the estimators.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EstimatorSettings {
+    /// Neighbourhood radius `r`.
+    pub radius: f64,
+    /// Gaussian-curvature method (also decides the pair behind `k1, k2`, shape index, curvedness).
+    pub gaussian_method: GaussianMethod,
+    /// Shape index is NaN where curvedness `< flat_tol / r`.
+    pub flat_tol: f64,
+}
+
+/// Every feature of one neighbourhood.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimates {
+    /// Values in [`Feature::ALL`] order.
+    pub values: [f64; 9],
+    /// `H^2 - K < 0` was clamped for the principal curvatures (geodesic-area method only).
+    pub clamped: bool,
+}
+
+/// Evaluates every estimator on the sums of one neighbourhood.
+pub fn estimate(stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> Estimates {
+    let r = settings.radius;
+    let h = mean_curvature(&stats.elevation, r);
+    let (k, (k1, k2, clamped)) = match settings.gaussian_method {
+        GaussianMethod::Moments => {
+            let k = gaussian_curvature_moments(&stats.normal_curvature);
+            let spread = (2.0 * stats.normal_curvature.variance()).sqrt();
+            let hm = stats.normal_curvature.mean();
+            (k, (hm + spread, hm - spread, false))
+        }
+        GaussianMethod::GeodesicArea => {
+            let k = gaussian_curvature_geodesic_area(&stats.geodesic_disk, r);
+            (k, principal_curvatures(h, k))
+        }
+    };
+    let c = curvedness(k1, k2);
+    let values = [
+        bending_energy(&stats.bending),
+        open_volume(&stats.elevation, r),
+        volume_invariant(&stats.elevation, r),
+        h,
+        k,
+        k1,
+        k2,
+        shape_index(k1, k2, c, r, settings.flat_tol),
+        c,
+    ];
+    Estimates { values, clamped }
+}
+
+/// The standard error of `feature`'s Monte Carlo estimate relative to its natural unit (`1/r`
+/// for curvatures, `1/r^2` for K and bending energy, `r^3` for volumes), from the stage-1 sums
+/// (SPEC §1.8): stage 2 runs where this exceeds `tau`.
+pub fn relative_standard_error(feature: Feature, stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> f64 {
+    let r = settings.radius;
+    match feature {
+        Feature::MeanCurvature => mean_curvature_error(&stats.elevation, r) * r,
+        Feature::OpenVolume | Feature::VolumeInvariant => open_volume_error(&stats.elevation, r) / r.powi(3),
+        Feature::BendingEnergy => stats.bending.standard_error() * r * r,
+        Feature::GaussianCurvature if settings.gaussian_method == GaussianMethod::GeodesicArea => {
+            gaussian_curvature_geodesic_area_error(&stats.geodesic_disk, r) * r * r
+        }
+        // K (moments), k1, k2, shape index, curvedness: the noise of the normal-curvature samples.
+        _ => stats.normal_curvature.standard_error() * r,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_unknown_names_list_the_valid_ones() {
+        for f in Feature::ALL {
+            assert_eq!(Feature::from_name(f.name()).unwrap(), f);
+            assert_eq!(Feature::ALL[f.index()], f);
+        }
+        let err = Feature::from_name("mean").unwrap_err().to_string();
+        assert!(err.contains("mean_curvature") && err.contains("shape_index"), "{err}");
+    }
+
+    #[test]
+    fn shape_index_and_curvedness_of_known_shapes() {
+        let s = |k1: f64, k2: f64| shape_index(k1, k2, curvedness(k1, k2), 1.0, 1e-3);
+        assert!((s(1.0, 1.0) - 1.0).abs() < 1e-12);
+        assert!((s(1.0, 0.0) - 0.5).abs() < 1e-12);
+        assert!(s(1.0, -1.0).abs() < 1e-12);
+        assert!((s(-1.0, -1.0) + 1.0).abs() < 1e-12);
+        assert!(s(0.0, 0.0).is_nan());
+        assert!((curvedness(1.0, 0.0) - 0.5f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn principal_curvatures_clamp_and_order() {
+        assert_eq!(principal_curvatures(1.0, 0.0), (2.0, 0.0, false));
+        assert_eq!(principal_curvatures(1.0, 2.0), (1.0, 1.0, true));
+    }
+}

@@ -1,0 +1,109 @@
+//! Feature maps over the computation texture (SPEC §1.9): every texel centre of a `W_c x W_c`
+//! grid is a point `s` where all requested features are evaluated, in parallel over rows.
+
+use super::pixel::{evaluate_point, Patterns, PixelResult};
+use super::settings::ComputeSettings;
+use crate::atlas::Atlas;
+use crate::error::Result;
+use crate::features::Feature;
+use crate::sampling::pixel_angle;
+use glam::DVec2;
+use rayon::prelude::*;
+
+/// Totals over a map, for reports.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MapSummary {
+    /// Texels on a chart (where features were evaluated).
+    pub texels: usize,
+    /// Fraction of those that ran stage 2 of adaptive sampling.
+    pub second_stage_fraction: f64,
+    /// Fraction whose principal curvatures needed `H^2 - K` clamped.
+    pub clamped_fraction: f64,
+    /// Missing samples over all pattern samples drawn.
+    pub missing_fraction: f64,
+    /// Texels whose neighbourhood was cut by a mesh border (some samples dropped there).
+    pub truncated_texels: usize,
+    /// Mean accepted samples per texel.
+    pub mean_valid: f64,
+}
+
+/// The requested features on a `resolution`² texture, texel `(i, j)` at index `j * W_c + i`
+/// (v up), NaN outside charts, plus per-texel diagnostics.
+#[derive(Debug, Clone)]
+pub struct FeatureMaps {
+    /// `W_c`.
+    pub resolution: usize,
+    /// Features, in the order of `values`.
+    pub features: Vec<Feature>,
+    /// One map per feature.
+    pub values: Vec<Vec<f32>>,
+    /// One standard-error map per feature, when requested.
+    pub standard_errors: Option<Vec<Vec<f32>>>,
+    /// Chart of each texel centre (-1 off the charts).
+    pub chart: Vec<i32>,
+    /// Accepted samples per texel.
+    pub n_valid: Vec<u32>,
+    /// Samples whose relocation failed.
+    pub n_missing: Vec<u32>,
+    /// Samples dropped at a mesh border.
+    pub n_border: Vec<u32>,
+    /// Texels that ran stage 2 (adaptive sampling).
+    pub second_stage: Vec<bool>,
+    /// Totals.
+    pub summary: MapSummary,
+}
+
+impl FeatureMaps {
+    /// Evaluates `settings.features` at every texel of the computation texture.
+    ///
+    /// # Errors
+    /// [`crate::UvfeatError::InvalidParameter`] from [`ComputeSettings::validate`].
+    pub fn compute(atlas: &Atlas, settings: &ComputeSettings) -> Result<Self> {
+        settings.validate()?;
+        let w = settings.resolution;
+        let patterns = Patterns::new(settings);
+        let mut pixels = vec![PixelResult::EMPTY; w * w];
+        pixels.par_chunks_mut(w).enumerate().for_each_init(Vec::new, |scratch, (j, row)| {
+            for (i, pixel) in row.iter_mut().enumerate() {
+                let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
+                let psi = pixel_angle(i as u32, j as u32, settings.seed);
+                *pixel = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
+            }
+        });
+        let chart = (0..w * w)
+            .map(|t| atlas.chart_at(DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64)))
+            .collect();
+        Ok(Self::assemble(pixels, chart, settings))
+    }
+
+    fn assemble(pixels: Vec<PixelResult>, chart: Vec<i32>, settings: &ComputeSettings) -> Self {
+        let pick = |f: &dyn Fn(&PixelResult) -> f32| pixels.iter().map(f).collect::<Vec<f32>>();
+        let values = settings.features.iter().map(|feat| pick(&|p| p.values[feat.index()])).collect();
+        let standard_errors = settings
+            .standard_errors
+            .then(|| settings.features.iter().map(|feat| pick(&|p| p.errors[feat.index()])).collect());
+        let evaluated: Vec<&PixelResult> = pixels.iter().filter(|p| p.counts.valid > 0).collect();
+        let n = evaluated.len().max(1) as f64;
+        let drawn: u64 = evaluated.iter().map(|p| u64::from(p.counts.valid + p.counts.missing + p.counts.border)).sum();
+        let summary = MapSummary {
+            texels: evaluated.len(),
+            second_stage_fraction: evaluated.iter().filter(|p| p.second_stage).count() as f64 / n,
+            clamped_fraction: evaluated.iter().filter(|p| p.clamped).count() as f64 / n,
+            missing_fraction: evaluated.iter().map(|p| f64::from(p.counts.missing)).sum::<f64>() / drawn.max(1) as f64,
+            truncated_texels: evaluated.iter().filter(|p| p.counts.border > 0).count(),
+            mean_valid: evaluated.iter().map(|p| f64::from(p.counts.valid)).sum::<f64>() / n,
+        };
+        Self {
+            resolution: settings.resolution,
+            features: settings.features.clone(),
+            values,
+            standard_errors,
+            chart,
+            n_valid: pixels.iter().map(|p| p.counts.valid).collect(),
+            n_missing: pixels.iter().map(|p| p.counts.missing).collect(),
+            n_border: pixels.iter().map(|p| p.counts.border).collect(),
+            second_stage: pixels.iter().map(|p| p.second_stage).collect(),
+            summary,
+        }
+    }
+}

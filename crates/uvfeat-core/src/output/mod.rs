@@ -1,0 +1,12 @@
+//! Stage 6 of the pipeline (SPEC §1.9): feature maps over the computation texture and
+//! per-vertex values.
+
+mod feature_map;
+mod per_vertex;
+mod pixel;
+mod settings;
+
+pub use feature_map::{FeatureMaps, MapSummary};
+pub use per_vertex::{per_vertex, VertexQuery};
+pub use pixel::{evaluate_point, Patterns, PixelResult};
+pub use settings::ComputeSettings;

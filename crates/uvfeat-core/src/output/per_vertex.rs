@@ -1,0 +1,108 @@
+//! Per-vertex values (SPEC §1.9): chart-masked bilinear lookup of the feature maps at every corner
+//! UV of a vertex, averaged over its corners; direct evaluation where no texel is usable.
+
+use super::feature_map::FeatureMaps;
+use super::pixel::{evaluate_point, Patterns};
+use super::settings::ComputeSettings;
+use crate::atlas::Atlas;
+use crate::sampling::pcg_hash;
+use glam::DVec2;
+use rayon::prelude::*;
+use std::f64::consts::TAU;
+
+/// How per-vertex values are obtained.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum VertexQuery {
+    /// Bilinear lookup in the feature maps (the paper's; falls back to `Direct` per vertex).
+    #[default]
+    Texture,
+    /// Evaluate the estimators at each corner UV.
+    Direct,
+}
+
+/// Distinct `(uv, chart)` corners of every geometric vertex.
+fn corners(atlas: &Atlas) -> Vec<Vec<(DVec2, i32)>> {
+    let topology = &atlas.topology;
+    let mut out = vec![Vec::new(); topology.n_geometric()];
+    for ((tri, uv), &chart) in topology.faces.iter().zip(&topology.corner_uvs).zip(&topology.face_chart) {
+        if chart < 0 {
+            continue;
+        }
+        for k in 0..3 {
+            let list = &mut out[tri[k] as usize];
+            if !list.contains(&(uv[k], chart)) {
+                list.push((uv[k], chart));
+            }
+        }
+    }
+    out
+}
+
+/// Bilinear lookup of every map at `uv`, using only texels of `chart` with accepted samples.
+/// `None` when no such texel is among the four nearest.
+fn lookup(maps: &FeatureMaps, uv: DVec2, chart: i32) -> Option<Vec<f64>> {
+    let w = maps.resolution as i64;
+    let (x, y) = (uv.x * w as f64 - 0.5, uv.y * w as f64 - 0.5);
+    let (i0, j0) = (x.floor() as i64, y.floor() as i64);
+    let (fx, fy) = (x - i0 as f64, y - j0 as f64);
+    let mut sums = vec![0.0; maps.values.len()];
+    let mut weights = vec![0.0; maps.values.len()];
+    let mut any = false;
+    for (di, dj, weight) in [(0, 0, (1.0 - fx) * (1.0 - fy)), (1, 0, fx * (1.0 - fy)), (0, 1, (1.0 - fx) * fy), (1, 1, fx * fy)] {
+        let (i, j) = (i0 + di, j0 + dj);
+        if i < 0 || j < 0 || i >= w || j >= w {
+            continue;
+        }
+        let t = (j * w + i) as usize;
+        if maps.chart[t] != chart || maps.n_valid[t] == 0 {
+            continue;
+        }
+        any = true;
+        for (f, map) in maps.values.iter().enumerate() {
+            let v = f64::from(map[t]);
+            if v.is_finite() {
+                sums[f] += weight * v;
+                weights[f] += weight;
+            }
+        }
+    }
+    any.then(|| sums.iter().zip(&weights).map(|(s, w)| if *w > 0.0 { s / w } else { f64::NAN }).collect())
+}
+
+/// Per-vertex values of every map, one `Vec` per feature with one value per *input* vertex
+/// (vertices the file split at seams get the value of their welded vertex).
+pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
+    let corners = corners(atlas);
+    let patterns = Patterns::new(settings);
+    let geometric: Vec<Vec<f64>> = corners
+        .par_iter()
+        .enumerate()
+        .map_init(Vec::new, |scratch, (vertex, list)| {
+            let mut found: Vec<Vec<f64>> = Vec::new();
+            if query == VertexQuery::Texture {
+                found.extend(list.iter().filter_map(|&(uv, chart)| lookup(maps, uv, chart)));
+            }
+            if found.is_empty() {
+                let psi = TAU * f64::from(pcg_hash(vertex as u32 ^ settings.seed as u32)) / 4_294_967_296.0;
+                found.extend(list.iter().map(|&(uv, _)| {
+                    let result = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
+                    maps.features.iter().map(|f| f64::from(result.values[f.index()])).collect()
+                }));
+            }
+            (0..maps.features.len())
+                .map(|f| {
+                    let finite: Vec<f64> = found.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
+                    if finite.is_empty() {
+                        f64::NAN
+                    } else {
+                        finite.iter().sum::<f64>() / finite.len() as f64
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let ids = &atlas.topology.vertex_ids;
+    (0..maps.features.len())
+        .map(|f| ids.iter().map(|&g| geometric[g as usize][f] as f32).collect())
+        .collect()
+}

@@ -1,0 +1,147 @@
+//! Features at one parametric point: sampling (full or two-stage adaptive, SPEC §1.8), one pass of
+//! statistics, every estimator, and optional batch-means standard errors.
+
+use super::settings::ComputeSettings;
+use crate::atlas::Atlas;
+use crate::features::{estimate, relative_standard_error, NeighbourhoodStats};
+use crate::sampling::{centre_at, disk_pattern, ellipse_area, gather, Sample, SampleCounts};
+use glam::DVec2;
+
+/// Interleaved batches behind the standard errors.
+const BATCHES: usize = 8;
+
+/// The sample patterns of a run (shared by every pixel).
+#[derive(Debug, Clone)]
+pub struct Patterns {
+    /// Full `N`-cell pattern, or stage 1 (`N/2` cells) when adaptive.
+    pub first: Vec<DVec2>,
+    /// Stage 2 (`N - N/2` cells, independent jitter); empty unless adaptive.
+    pub second: Vec<DVec2>,
+}
+
+impl Patterns {
+    /// Patterns for `settings` (SPEC §1.4.2, §1.8, decision A19).
+    pub fn new(settings: &ComputeSettings) -> Self {
+        let n = settings.samples;
+        if settings.adaptive {
+            Self { first: disk_pattern(n / 2, settings.seed, 1), second: disk_pattern(n - n / 2, settings.seed, 2) }
+        } else {
+            Self { first: disk_pattern(n, settings.seed, 0), second: Vec::new() }
+        }
+    }
+}
+
+/// Features and diagnostics of one point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PixelResult {
+    /// Every feature, in `Feature::ALL` order (NaN where there were no samples).
+    pub values: [f32; 9],
+    /// Standard errors in the same order (NaN unless requested).
+    pub errors: [f32; 9],
+    /// Sample counts over both stages.
+    pub counts: SampleCounts,
+    /// Stage 2 of adaptive sampling ran.
+    pub second_stage: bool,
+    /// `H^2 - K < 0` was clamped for the principal curvatures.
+    pub clamped: bool,
+}
+
+impl PixelResult {
+    /// A point off the charts.
+    pub const EMPTY: PixelResult = PixelResult {
+        values: [f32::NAN; 9],
+        errors: [f32::NAN; 9],
+        counts: SampleCounts { valid: 0, missing: 0, border: 0 },
+        second_stage: false,
+        clamped: false,
+    };
+}
+
+/// Evaluates every feature at parametric point `uv` with rotation `psi`; `scratch` holds the
+/// samples (reused across calls, so nothing is allocated per pixel).
+pub fn evaluate_point(
+    atlas: &Atlas,
+    uv: DVec2,
+    psi: f64,
+    settings: &ComputeSettings,
+    patterns: &Patterns,
+    scratch: &mut Vec<Sample>,
+) -> PixelResult {
+    let Some(centre) = centre_at(atlas, uv) else { return PixelResult::EMPTY };
+    let sampler = settings.sampler();
+    let stats_settings = settings.stats();
+    let estimators = settings.estimators();
+    let area = ellipse_area(&centre, &sampler);
+    scratch.clear();
+    let first = patterns.first.len();
+    let mut counts = gather(atlas, &centre, &patterns.first, psi, area / first as f64, &sampler, scratch);
+    let mut stats = NeighbourhoodStats::default();
+    stats.accumulate(scratch, centre.normal, &stats_settings);
+    let mut second_stage = false;
+    if settings.adaptive {
+        let needs_more = settings
+            .features
+            .iter()
+            .any(|&f| !(relative_standard_error(f, &stats, &estimators) <= settings.tau));
+        if needs_more && !patterns.second.is_empty() {
+            second_stage = true;
+            let second = patterns.second.len();
+            let total = (first + second) as f64;
+            let start = scratch.len();
+            counts.add(gather(atlas, &centre, &patterns.second, psi, area / second as f64, &sampler, scratch));
+            // Each stage's samples stood for A_uv / N_stage; pooled they stand for A_uv / N.
+            stats.scale_areas(first as f64 / total);
+            let mut more = NeighbourhoodStats::default();
+            more.accumulate(&scratch[start..], centre.normal, &stats_settings);
+            more.scale_areas(second as f64 / total);
+            stats.merge(&more);
+        }
+    }
+    let estimates = estimate(&stats, &estimators);
+    let mut result = PixelResult {
+        values: estimates.values.map(|v| v as f32),
+        errors: [f32::NAN; 9],
+        counts,
+        second_stage,
+        clamped: estimates.clamped,
+    };
+    if settings.standard_errors {
+        result.errors = batch_standard_errors(scratch, &centre.normal, settings, second_stage, first);
+    }
+    result
+}
+
+/// Standard errors from the spread of the estimates of `BATCHES` interleaved batches.
+fn batch_standard_errors(
+    samples: &[Sample],
+    normal: &glam::DVec3,
+    settings: &ComputeSettings,
+    pooled: bool,
+    first: usize,
+) -> [f32; 9] {
+    let stats_settings = settings.stats();
+    let estimators = settings.estimators();
+    let mut batches = [NeighbourhoodStats::default(); BATCHES];
+    for (i, sample) in samples.iter().enumerate() {
+        batches[i % BATCHES].accumulate(std::slice::from_ref(sample), *normal, &stats_settings);
+    }
+    // Each batch holds about 1/BATCHES of the samples, so its absolute areas are scaled back up.
+    let pooled_scale = if pooled { first as f64 / settings.samples as f64 } else { 1.0 };
+    let values: Vec<[f64; 9]> = batches
+        .iter_mut()
+        .map(|b| {
+            b.scale_areas(BATCHES as f64 * pooled_scale);
+            estimate(b, &estimators).values
+        })
+        .collect();
+    std::array::from_fn(|f| {
+        let finite: Vec<f64> = values.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
+        let n = finite.len() as f64;
+        if n < 2.0 {
+            return f32::NAN;
+        }
+        let mean = finite.iter().sum::<f64>() / n;
+        let var = finite.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        (var / n).sqrt() as f32
+    })
+}

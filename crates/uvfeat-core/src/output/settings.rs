@@ -1,0 +1,116 @@
+//! Everything a feature computation is asked to do, with the SPEC §1.10 defaults in one place.
+
+use crate::atlas::MAX_RESOLUTION;
+use crate::error::{Result, UvfeatError};
+use crate::features::{EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
+use crate::sampling::{Criterion, SamplerSettings};
+
+/// A feature computation request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComputeSettings {
+    /// Features to return.
+    pub features: Vec<Feature>,
+    /// Neighbourhood radius `r` in object units.
+    pub radius: f64,
+    /// Samples per pixel `N` (256).
+    pub samples: usize,
+    /// Computation texture size `W_c` (512).
+    pub resolution: usize,
+    /// Ellipse coverage margin `m` (1.25).
+    pub margin: f64,
+    /// Seams a sample may cross (3).
+    pub max_jumps: u32,
+    /// Neighbourhood criterion (Euclidean).
+    pub criterion: Criterion,
+    /// Seed of the pattern and the per-pixel rotations (0).
+    pub seed: u64,
+    /// Two-stage adaptive sampling (off).
+    pub adaptive: bool,
+    /// Stage 2 runs where the relative standard error exceeds `tau` (0.01).
+    pub tau: f64,
+    /// Gaussian-curvature method (moments).
+    pub gaussian_method: GaussianMethod,
+    /// Weighting of the volume integrands (distance).
+    pub volume_weighting: VolumeWeighting,
+    /// Inner exclusion of bending energy and curvature moments, as a fraction of `r` (0.1).
+    pub rho_min_fraction: f64,
+    /// Shape index is NaN where curvedness `< flat_tol / r` (1e-3).
+    pub flat_tol: f64,
+    /// Also return per-pixel standard errors (batch means over 8 interleaved batches).
+    pub standard_errors: bool,
+}
+
+impl ComputeSettings {
+    /// The defaults of SPEC §1.10 for `features` at `radius`.
+    pub fn new(features: Vec<Feature>, radius: f64) -> Self {
+        Self {
+            features,
+            radius,
+            samples: 256,
+            resolution: 512,
+            margin: 1.25,
+            max_jumps: 3,
+            criterion: Criterion::Euclidean,
+            seed: 0,
+            adaptive: false,
+            tau: 0.01,
+            gaussian_method: GaussianMethod::Moments,
+            volume_weighting: VolumeWeighting::Distance,
+            rho_min_fraction: 0.1,
+            flat_tol: 1e-3,
+            standard_errors: false,
+        }
+    }
+
+    /// Checks every parameter.
+    ///
+    /// # Errors
+    /// [`UvfeatError::InvalidParameter`] naming the parameter and the valid range.
+    pub fn validate(&self) -> Result<()> {
+        let invalid = |name: &'static str, reason: String| Err(UvfeatError::InvalidParameter { name, reason });
+        if self.features.is_empty() {
+            return invalid("features", "ask for at least one feature".into());
+        }
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            return invalid("radius", format!("must be a positive, finite length, got {}", self.radius));
+        }
+        if self.samples < 4 || self.samples > 65_536 {
+            return invalid("samples", format!("must be between 4 and 65536, got {}", self.samples));
+        }
+        if self.resolution == 0 || self.resolution > MAX_RESOLUTION {
+            return invalid("compute_resolution", format!("must be in 1..={MAX_RESOLUTION}, got {}", self.resolution));
+        }
+        if !(self.margin.is_finite() && self.margin >= 1.0 && self.margin <= 4.0) {
+            return invalid("margin", format!("must be in [1, 4], got {}", self.margin));
+        }
+        if !(self.tau >= 0.0) {
+            return invalid("tau", format!("must be >= 0 (inf = stage 1 only), got {}", self.tau));
+        }
+        if !(0.0..1.0).contains(&self.rho_min_fraction) {
+            return invalid("rho_min", format!("must be a fraction of r in [0, 1), got {}", self.rho_min_fraction));
+        }
+        if !(self.flat_tol >= 0.0) {
+            return invalid("flat_tol", format!("must be >= 0, got {}", self.flat_tol));
+        }
+        Ok(())
+    }
+
+    /// Sampler part of the settings.
+    pub fn sampler(&self) -> SamplerSettings {
+        SamplerSettings { radius: self.radius, margin: self.margin, max_jumps: self.max_jumps, criterion: self.criterion }
+    }
+
+    /// Statistics part of the settings.
+    pub fn stats(&self) -> StatsSettings {
+        StatsSettings {
+            radius: self.radius,
+            rho_min: self.rho_min_fraction * self.radius,
+            volume_weighting: self.volume_weighting,
+        }
+    }
+
+    /// Estimator part of the settings.
+    pub fn estimators(&self) -> EstimatorSettings {
+        EstimatorSettings { radius: self.radius, gaussian_method: self.gaussian_method, flat_tol: self.flat_tol }
+    }
+}

@@ -1,0 +1,92 @@
+//! The sample pattern shared by all pixels (SPEC §1.4.2–§1.4.3): a stratified jittered grid
+//! mapped to the unit disk by the Shirley–Chiu concentric map, rotated per pixel by a hashed angle.
+
+use glam::DVec2;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+
+/// PCG-style integer hash (O'Neill's PCG output permutation applied to an LCG step); good
+/// avalanche, no state, so results do not depend on the order or number of threads.
+#[inline]
+pub fn pcg_hash(input: u32) -> u32 {
+    let state = input.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
+/// Uniform number in `[0, 1)` from a hash of several keys.
+fn unit(keys: &[u32]) -> f64 {
+    let h = keys.iter().fold(0x9e37_79b9u32, |h, &k| pcg_hash(h ^ k));
+    f64::from(h) / 4_294_967_296.0
+}
+
+/// Per-pixel rotation `psi = 2 pi hash(i, j, seed) / 2^32` (SPEC §1.4.3).
+#[inline]
+pub fn pixel_angle(i: u32, j: u32, seed: u64) -> f64 {
+    TAU * unit(&[i, j, seed as u32, (seed >> 32) as u32])
+}
+
+/// Shirley–Chiu concentric map of `xi` in `[0, 1]^2` to the unit disk (area-preserving).
+pub fn concentric_disk(xi: DVec2) -> DVec2 {
+    let (a, b) = (2.0 * xi.x - 1.0, 2.0 * xi.y - 1.0);
+    if a == 0.0 && b == 0.0 {
+        return DVec2::ZERO;
+    }
+    let (radius, phi) = if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, FRAC_PI_2 - FRAC_PI_4 * (a / b)) };
+    DVec2::new(radius * phi.cos(), radius * phi.sin())
+}
+
+/// Grid of `n_x x n_y = n` cells with `n_x` the largest divisor of `n` not above `sqrt(n)`.
+pub fn grid_shape(n: usize) -> (usize, usize) {
+    let nx = (1..=n.max(1)).take_while(|d| d * d <= n).filter(|d| n % d == 0).last().unwrap_or(1);
+    (nx, n / nx)
+}
+
+/// `n` stratified, jittered points of the unit disk; `stage` selects independent jitters (the two
+/// halves of adaptive sampling, SPEC §1.8, use stages 1 and 2; full sampling stage 0).
+pub fn disk_pattern(n: usize, seed: u64, stage: u32) -> Vec<DVec2> {
+    let (nx, ny) = grid_shape(n);
+    let (s0, s1) = (seed as u32, (seed >> 32) as u32);
+    (0..ny)
+        .flat_map(|l| (0..nx).map(move |k| (k, l)))
+        .map(|(k, l)| {
+            let cell = (l * nx + k) as u32;
+            let jitter = DVec2::new(unit(&[s0, s1, stage, cell, 1]), unit(&[s0, s1, stage, cell, 2]));
+            concentric_disk(DVec2::new((k as f64 + jitter.x) / nx as f64, (l as f64 + jitter.y) / ny as f64))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_shapes_follow_the_spec() {
+        assert_eq!(grid_shape(64), (8, 8));
+        assert_eq!(grid_shape(32), (4, 8));
+        assert_eq!(grid_shape(100), (10, 10));
+        assert_eq!(grid_shape(50), (5, 10));
+        assert_eq!(grid_shape(7), (1, 7));
+    }
+
+    #[test]
+    fn pattern_is_inside_the_disk_and_area_uniform() {
+        let points = disk_pattern(4096, 7, 0);
+        assert!(points.iter().all(|p| p.length() <= 1.0));
+        // Area-uniform: a quarter of the points within radius 1/2, and centred.
+        let inner = points.iter().filter(|p| p.length() < 0.5).count() as f64 / 4096.0;
+        assert!((inner - 0.25).abs() < 0.01, "{inner}");
+        let mean = points.iter().copied().sum::<DVec2>() / 4096.0;
+        assert!(mean.length() < 0.01);
+    }
+
+    #[test]
+    fn stages_and_seeds_give_independent_jitter_and_angles_are_spread() {
+        assert_ne!(disk_pattern(16, 0, 1), disk_pattern(16, 0, 2));
+        assert_ne!(disk_pattern(16, 0, 0), disk_pattern(16, 1, 0));
+        assert_eq!(disk_pattern(16, 3, 0), disk_pattern(16, 3, 0));
+        let angles: Vec<f64> = (0..1000).map(|i| pixel_angle(i, 7, 0)).collect();
+        let mean = angles.iter().sum::<f64>() / 1000.0;
+        assert!((mean - std::f64::consts::PI).abs() < 0.2);
+    }
+}
