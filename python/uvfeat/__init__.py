@@ -6,6 +6,9 @@ Quick start::
     mesh = uvfeat.load("model.obj")            # or uvfeat.Mesh(positions, faces, uvs, uv_faces)
     atlas = uvfeat.Atlas(mesh, resolution=1024)
     atlas.position, atlas.normal, atlas.chart  # (R, R, ...) read-only NumPy buffers
+    maps = atlas.compute(["mean_curvature", "shape_index"], radius="2%")
+    maps["mean_curvature"].texture, maps["mean_curvature"].per_vertex()
+    values = uvfeat.compute(mesh, "gaussian_curvature", radius=0.05)   # one shot, per vertex
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
@@ -13,7 +16,8 @@ right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex region
 
 from . import errors, examples, shapes
 from ._core import __version__
-from .atlas import Atlas, Location, SeamCrossing
+from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
+from .compute import compute
 from .errors import (
     InvalidMeshError,
     InvalidParameterError,
@@ -24,11 +28,16 @@ from .errors import (
     UVError,
     UVWarning,
 )
+from .features import FEATURES, FeatureMap
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 
 __all__ = [
     "Atlas",
+    "FEATURES",
+    "FeatureMap",
+    "Neighbourhoods",
+    "compute",
     "InvalidMeshError",
     "InvalidParameterError",
     "Location",

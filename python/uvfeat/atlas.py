@@ -48,6 +48,27 @@ class Location(NamedTuple):
     jumps: int
 
 
+class Neighbourhoods(NamedTuple):
+    """Weighted neighbourhood samples of T texels, padded to N samples each (use ``valid``)."""
+
+    texels: np.ndarray
+    """(T,) flat index ``j * W_c + i`` into the computation texture."""
+    centres: np.ndarray
+    """(T, 3) centre points p."""
+    normals: np.ndarray
+    """(T, 3) unit normals at p."""
+    positions: np.ndarray
+    """(T, N, 3) samples q_i (zero where not valid)."""
+    sample_normals: np.ndarray
+    """(T, N, 3) unit normals n_i."""
+    areas: np.ndarray
+    """(T, N) surface area dA_i each sample stands for (0 where not valid): integrals are
+    ``sum(areas * g)``, means ``sum(areas * g) / sum(areas)``."""
+    valid: np.ndarray
+    """(T, N) bool: accepted samples (inside the ball of radius r)."""
+    resolution: int
+
+
 class SeamCrossing(NamedTuple):
     """A point carried across the seam of its border texel."""
 
@@ -168,6 +189,73 @@ class Atlas:
         self.timings["update_s"] = time.perf_counter() - started
         for name in self._FRAME_BUFFERS:
             self.__dict__.pop(name, None)
+
+    # -- features -------------------------------------------------------------------------------
+    def compute(self, features, radius, samples: int = 256, compute_resolution: int = 512, adaptive: bool = False,
+                seed: int = 0, *, paper_mode: bool = False, **options) -> dict:
+        """Multi-scale features at every texel of a ``compute_resolution``² texture.
+
+        Parameters
+        ----------
+        features : str or list of str
+            Names from :data:`uvfeat.FEATURES` (a comma-separated string or "all" also work).
+        radius : float, str or list
+            Neighbourhood radius in object units, or a percentage of the bounding-box diagonal
+            (``"2%"``); a list gives a scale stack.
+        samples : int
+            Monte Carlo samples per texel (>= 4).
+        compute_resolution : int
+            Size ``W_c`` of the computation texture.
+        adaptive : bool
+            Two-stage adaptive sampling (SPEC §1.8; ``tau`` option, default 0.01).
+        seed : int
+            Seed of the pattern and the per-pixel rotations (results do not depend on threads).
+        paper_mode : bool
+            The paper's choices where they differ from ours (SPEC §1.10), for reproduction.
+        **options
+            ``margin`` (1.25), ``max_jumps`` (3), ``criterion`` ("euclidean" | "geodesic"),
+            ``gaussian_method`` ("moments" | "geodesic_area"), ``volume_weighting``
+            ("distance" | "uniform"), ``rho_min`` (0.1, fraction of r), ``flat_tol`` (1e-3),
+            ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct").
+
+        Returns
+        -------
+        dict of str to FeatureMap
+        """
+        from .features import compute_maps
+
+        return compute_maps(self, features, radius, samples=samples, compute_resolution=compute_resolution,
+                            adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
+
+    def neighbourhoods(self, radius, samples: int = 256, compute_resolution: int = 512, seed: int = 0,
+                       tile_texels: int = 16384, **options):
+        """The weighted neighbourhood samples of every texel, in tiles, for user-defined operators
+        ``F(p, S(p))`` (SPEC §2.9). Yields :class:`Neighbourhoods` tuples whose arrays hold
+        ``tile_texels x samples`` samples at most (memory-bounded)."""
+        from .features import compute_maps_settings
+
+        settings, resolution = compute_maps_settings(self, radius, samples, compute_resolution, seed, options)
+        total = resolution * resolution
+        for start in range(0, total, int(tile_texels)):
+            texels, centres, normals, positions, sample_normals, areas, valid = _core.neighbourhood_tile_arrays(
+                self._core, settings, start, min(start + int(tile_texels), total))
+            if len(texels):
+                yield Neighbourhoods(texels, centres, normals, positions, sample_normals, areas, valid, resolution)
+
+    def map_operator(self, operator, radius, samples: int = 256, compute_resolution: int = 512, seed: int = 0,
+                     tile_texels: int = 16384, **options) -> np.ndarray:
+        """Applies ``operator(neighbourhoods) -> (T,) values`` tile by tile and returns the
+        ``(W_c, W_c)`` float32 map (NaN off the charts)."""
+        out = None
+        for tile in self.neighbourhoods(radius, samples, compute_resolution, seed, tile_texels, **options):
+            if out is None:
+                out = np.full(tile.resolution * tile.resolution, np.nan, dtype=np.float32)
+            values = np.asarray(operator(tile), dtype=np.float32)
+            if values.shape != tile.texels.shape:
+                raise InvalidParameterError(f"operator returned shape {values.shape}, expected {tile.texels.shape}")
+            out[tile.texels] = values
+        r = int(compute_resolution)
+        return (out if out is not None else np.full(r * r, np.nan, dtype=np.float32)).reshape(r, r)
 
     # -- diagnostics ------------------------------------------------------------------------------
     @property

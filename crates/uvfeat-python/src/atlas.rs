@@ -184,6 +184,11 @@ impl PyAtlas {
 }
 
 impl PyAtlas {
+    /// The core atlas.
+    pub fn core(&self) -> &Atlas {
+        &self.inner
+    }
+
     fn texel_map<'py, T: numpy::Element>(&self, py: Python<'py>, data: Vec<T>) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
         let r = self.inner.resolution();
         to_numpy(py, data, &[r, r])

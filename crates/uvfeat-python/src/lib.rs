@@ -4,6 +4,7 @@
 mod arrays;
 mod atlas;
 mod error;
+mod features;
 mod shapes;
 mod topology;
 
@@ -16,5 +17,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::buffer_bytes, m)?)?;
+    m.add_class::<features::PySettings>()?;
+    m.add_class::<features::PyFeatureMaps>()?;
+    m.add_function(wrap_pyfunction!(features::compute_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(features::compute_maps, m)?)?;
+    m.add_function(wrap_pyfunction!(features::neighbourhood_tile_arrays, m)?)?;
     Ok(())
 }

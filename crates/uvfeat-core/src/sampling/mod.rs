@@ -3,8 +3,10 @@
 
 mod neighbourhood;
 mod pattern;
+mod tile;
 
 pub use neighbourhood::{
     arc_distance, centre_at, ellipse_area, gather, Centre, Criterion, Sample, SampleCounts, SamplerSettings,
 };
+pub use tile::{neighbourhood_tile, NeighbourhoodTile};
 pub use pattern::{concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle};

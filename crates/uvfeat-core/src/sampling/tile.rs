@@ -1,0 +1,75 @@
+//! The weighted neighbourhood samples of many texels at once, as flat arrays, for user-defined
+//! operators `F(p, S(p))` (SPEC §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
+
+use super::neighbourhood::{centre_at, ellipse_area, gather, Sample};
+use super::pattern::{disk_pattern, pixel_angle};
+use crate::atlas::Atlas;
+use crate::output::ComputeSettings;
+use glam::DVec2;
+use rayon::prelude::*;
+
+/// Samples of the texels of a tile, padded to `N` per texel (`valid` says which are real).
+#[derive(Debug, Clone, Default)]
+pub struct NeighbourhoodTile {
+    /// Samples per texel `N` (the padding width).
+    pub samples: usize,
+    /// (T) index `j * W_c + i` of each texel of the tile that lies on a chart.
+    pub texels: Vec<u32>,
+    /// (T) centre `p`.
+    pub centres: Vec<[f64; 3]>,
+    /// (T) unit normal at `p`.
+    pub centre_normals: Vec<[f64; 3]>,
+    /// (T * N) sample positions `q_i` (zero where not valid).
+    pub positions: Vec<[f64; 3]>,
+    /// (T * N) sample normals `n_i` (zero where not valid).
+    pub normals: Vec<[f64; 3]>,
+    /// (T * N) surface area each sample stands for, `dA_i` (0 where not valid).
+    pub areas: Vec<f64>,
+    /// (T * N) which entries are accepted samples.
+    pub valid: Vec<bool>,
+}
+
+/// Gathers the neighbourhoods of the texels with index in `texels` (of the `W_c`² texture).
+pub fn neighbourhood_tile(atlas: &Atlas, settings: &ComputeSettings, texels: std::ops::Range<usize>) -> NeighbourhoodTile {
+    let w = settings.resolution;
+    let n = settings.samples;
+    let pattern = disk_pattern(n, settings.seed, 0);
+    let sampler = settings.sampler();
+    let per_texel: Vec<(u32, [f64; 3], [f64; 3], Vec<Sample>)> = texels
+        .into_par_iter()
+        .filter_map(|t| {
+            let (i, j) = (t % w, t / w);
+            let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
+            let centre = centre_at(atlas, uv)?;
+            let mut samples = Vec::with_capacity(n);
+            let area = ellipse_area(&centre, &sampler) / n as f64;
+            let psi = pixel_angle(i as u32, j as u32, settings.seed);
+            gather(atlas, &centre, &pattern, psi, area, &sampler, &mut samples);
+            Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
+        })
+        .collect();
+    let count = per_texel.len();
+    let mut tile = NeighbourhoodTile {
+        samples: n,
+        texels: Vec::with_capacity(count),
+        centres: Vec::with_capacity(count),
+        centre_normals: Vec::with_capacity(count),
+        positions: vec![[0.0; 3]; count * n],
+        normals: vec![[0.0; 3]; count * n],
+        areas: vec![0.0; count * n],
+        valid: vec![false; count * n],
+    };
+    for (k, (t, p, normal, samples)) in per_texel.into_iter().enumerate() {
+        tile.texels.push(t);
+        tile.centres.push(p);
+        tile.centre_normals.push(normal);
+        for (s, sample) in samples.iter().enumerate() {
+            let at = k * n + s;
+            tile.positions[at] = sample.position.to_array();
+            tile.normals[at] = sample.normal.to_array();
+            tile.areas[at] = sample.area;
+            tile.valid[at] = true;
+        }
+    }
+    tile
+}

@@ -1,0 +1,204 @@
+//! Feature computation: settings in, `FeatureMaps` out (per-texel maps, diagnostics, per-vertex
+//! values), and neighbourhood tiles for user-defined operators.
+
+use crate::arrays::{flatten, to_numpy};
+use crate::atlas::PyAtlas;
+use crate::error::{guarded, to_py};
+use numpy::PyArrayDyn;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use uvfeat_core::features::{Feature, GaussianMethod, VolumeWeighting};
+use uvfeat_core::output::{per_vertex, ComputeSettings, FeatureMaps, VertexQuery};
+use uvfeat_core::sampling::{neighbourhood_tile, Criterion};
+use uvfeat_core::UvfeatError;
+
+fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
+    options.iter().find(|(k, _)| *k == value).map(|(_, v)| *v).ok_or_else(|| {
+        let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
+        to_py(UvfeatError::InvalidParameter { name, reason: format!("{value:?} is not one of {valid:?}") })
+    })
+}
+
+/// Builds and validates core settings from the Python keyword arguments.
+#[allow(clippy::too_many_arguments)]
+#[pyfunction]
+#[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, tau, seed, margin, max_jumps,
+                    criterion, gaussian_method, volume_weighting, rho_min, flat_tol, standard_error))]
+pub fn compute_settings(
+    features: Vec<String>,
+    radius: f64,
+    samples: usize,
+    compute_resolution: usize,
+    adaptive: bool,
+    tau: f64,
+    seed: u64,
+    margin: f64,
+    max_jumps: u32,
+    criterion: &str,
+    gaussian_method: &str,
+    volume_weighting: &str,
+    rho_min: f64,
+    flat_tol: f64,
+    standard_error: bool,
+) -> PyResult<PySettings> {
+    let features = features.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)?;
+    let mut s = ComputeSettings::new(features, radius);
+    s.samples = samples;
+    s.resolution = compute_resolution;
+    s.adaptive = adaptive;
+    s.tau = tau;
+    s.seed = seed;
+    s.margin = margin;
+    s.max_jumps = max_jumps;
+    s.criterion = choice("criterion", criterion, &[("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)])?;
+    s.gaussian_method = choice(
+        "gaussian_method",
+        gaussian_method,
+        &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
+    )?;
+    s.volume_weighting = choice(
+        "volume_weighting",
+        volume_weighting,
+        &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)],
+    )?;
+    s.rho_min_fraction = rho_min;
+    s.flat_tol = flat_tol;
+    s.standard_errors = standard_error;
+    s.validate().map_err(to_py)?;
+    Ok(PySettings { inner: s })
+}
+
+/// Validated settings of a feature computation.
+#[pyclass(name = "ComputeSettings", module = "uvfeat._core", frozen)]
+pub struct PySettings {
+    pub inner: ComputeSettings,
+}
+
+/// Maps of one computation (one radius).
+#[pyclass(name = "FeatureMaps", module = "uvfeat._core", frozen)]
+pub struct PyFeatureMaps {
+    inner: FeatureMaps,
+    settings: ComputeSettings,
+}
+
+#[pymethods]
+impl PyFeatureMaps {
+    #[getter]
+    fn resolution(&self) -> usize {
+        self.inner.resolution
+    }
+
+    #[getter]
+    fn features(&self) -> Vec<&'static str> {
+        self.inner.features.iter().map(|f| f.name()).collect()
+    }
+
+    /// (W_c, W_c) map of the k-th feature.
+    fn values<'py>(&self, py: Python<'py>, k: usize) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.map(py, self.inner.values[k].clone())
+    }
+
+    /// (W_c, W_c) standard errors of the k-th feature, or None when not requested.
+    fn standard_errors<'py>(&self, py: Python<'py>, k: usize) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
+        self.inner.standard_errors.as_ref().map(|e| self.map(py, e[k].clone())).transpose()
+    }
+
+    #[getter]
+    fn chart<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<i32>>> {
+        self.map(py, self.inner.chart.clone())
+    }
+
+    #[getter]
+    fn n_valid<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<u32>>> {
+        self.map(py, self.inner.n_valid.clone())
+    }
+
+    #[getter]
+    fn n_missing<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<u32>>> {
+        self.map(py, self.inner.n_missing.clone())
+    }
+
+    #[getter]
+    fn n_border<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<u32>>> {
+        self.map(py, self.inner.n_border.clone())
+    }
+
+    #[getter]
+    fn second_stage<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<bool>>> {
+        self.map(py, self.inner.second_stage.clone())
+    }
+
+    #[getter]
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = &self.inner.summary;
+        let out = PyDict::new(py);
+        out.set_item("texels", s.texels)?;
+        out.set_item("second_stage_fraction", s.second_stage_fraction)?;
+        out.set_item("clamped_fraction", s.clamped_fraction)?;
+        out.set_item("missing_fraction", s.missing_fraction)?;
+        out.set_item("truncated_texels", s.truncated_texels)?;
+        out.set_item("mean_valid_samples", s.mean_valid)?;
+        Ok(out)
+    }
+
+    /// Per-vertex values of every feature (list of (n_vertices,) arrays), by texture lookup or
+    /// direct evaluation.
+    fn per_vertex<'py>(&self, py: Python<'py>, atlas: &PyAtlas, query: &str) -> PyResult<Vec<Bound<'py, PyArrayDyn<f32>>>> {
+        let query = choice("query", query, &[("texture", VertexQuery::Texture), ("direct", VertexQuery::Direct)])?;
+        let (maps, settings, core) = (&self.inner, &self.settings, atlas.core());
+        let values = guarded(py, || Ok(per_vertex(core, maps, settings, query)))?;
+        values.into_iter().map(|v| to_numpy(py, v.clone(), &[v.len()])).collect()
+    }
+}
+
+impl PyFeatureMaps {
+    fn map<'py, T: numpy::Element>(&self, py: Python<'py>, data: Vec<T>) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+        let w = self.inner.resolution;
+        to_numpy(py, data, &[w, w])
+    }
+}
+
+/// Runs a feature computation on an atlas (GIL released, parallel).
+#[pyfunction]
+pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> PyResult<PyFeatureMaps> {
+    let (core, s) = (atlas.core(), &settings.inner);
+    let inner = guarded(py, || FeatureMaps::compute(core, s))?;
+    Ok(PyFeatureMaps { inner, settings: settings.inner.clone() })
+}
+
+type TileArrays<'py> = (
+    Bound<'py, PyArrayDyn<u32>>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<bool>>,
+);
+
+/// Neighbourhood samples of texels `start..stop` of the computation texture:
+/// `(texels (T,), centres (T,3), centre_normals (T,3), positions (T,N,3), normals (T,N,3),
+/// areas (T,N), valid (T,N))`.
+#[pyfunction]
+pub fn neighbourhood_tile_arrays<'py>(
+    py: Python<'py>,
+    atlas: &PyAtlas,
+    settings: &PySettings,
+    start: usize,
+    stop: usize,
+) -> PyResult<TileArrays<'py>> {
+    let (core, s) = (atlas.core(), &settings.inner);
+    let w = s.resolution;
+    let range = start.min(w * w)..stop.min(w * w);
+    let tile = guarded(py, || Ok(neighbourhood_tile(core, s, range)))?;
+    let (t, n) = (tile.texels.len(), tile.samples);
+    Ok((
+        to_numpy(py, tile.texels, &[t])?,
+        to_numpy(py, flatten(&tile.centres), &[t, 3])?,
+        to_numpy(py, flatten(&tile.centre_normals), &[t, 3])?,
+        to_numpy(py, flatten(&tile.positions), &[t, n, 3])?,
+        to_numpy(py, flatten(&tile.normals), &[t, n, 3])?,
+        to_numpy(py, tile.areas, &[t, n])?,
+        to_numpy(py, tile.valid, &[t, n])?,
+    ))
+}

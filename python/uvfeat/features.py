@@ -1,0 +1,201 @@
+"""Multi-scale features (SPEC §1.4–§1.10, §2): :class:`FeatureMap` and the option handling behind
+``Atlas.compute`` and ``uvfeat.compute``.
+
+Conventions: ``H = (k1 + k2)/2``, positive where the surface bends away from the (outward) normal;
+``k1 >= k2``; units 1/length for H, k1, k2, curvedness, 1/length² for K and bending energy,
+length³ for the sphere volumes; shape index in [-1, 1] (+1 convex cap).
+"""
+
+from __future__ import annotations
+
+import re
+import time
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _core
+from .errors import InvalidParameterError
+
+#: Every feature name, in output order.
+FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature", "gaussian_curvature",
+            "k1", "k2", "shape_index", "curvedness")
+
+#: Options of ``compute`` beyond the named arguments, with the SPEC §1.10 defaults.
+DEFAULT_OPTIONS = {
+    "margin": 1.25,
+    "max_jumps": 3,
+    "criterion": "euclidean",
+    "gaussian_method": "moments",
+    "volume_weighting": "distance",
+    "rho_min": 0.1,
+    "flat_tol": 1e-3,
+    "tau": 0.01,
+    "standard_error": False,
+    "query": "texture",
+}
+
+#: What ``paper_mode=True`` changes (SPEC §1.10). The paper's per-chart pattern repetition,
+#: bilinear texel lookup and chord-sum geodesics are not reproduced yet: uvfeat keeps per-sample
+#: relocation, exact triangle lookup and arc geodesics there, and says so with a warning.
+PAPER_OPTIONS = {"margin": 1.0, "max_jumps": 1, "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
+
+
+def feature_names(features) -> list[str]:
+    """A list of valid feature names from a name, a comma-separated string, a list, or "all"."""
+    if isinstance(features, str):
+        features = FEATURES if features == "all" else [f.strip() for f in features.split(",") if f.strip()]
+    features = list(features)
+    unknown = [f for f in features if f not in FEATURES]
+    if unknown or not features:
+        raise InvalidParameterError(f"unknown feature(s) {unknown or features}; valid: {', '.join(FEATURES)} (or 'all')")
+    return list(dict.fromkeys(features))
+
+
+def resolve_radius(radius, diagonal: float) -> float:
+    """A radius in object units from a number or a percentage string of the bounding-box diagonal
+    (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
+    if isinstance(radius, str):
+        match = re.fullmatch(r"\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*%\s*", radius)
+        if not match:
+            raise InvalidParameterError(f"radius {radius!r}: give a length or a percentage of the diagonal like '2%'")
+        value = float(match.group(1)) / 100.0 * diagonal
+    elif isinstance(radius, (int, float, np.floating, np.integer)) and not isinstance(radius, bool):
+        value = float(radius)
+    else:
+        raise InvalidParameterError(f"radius must be a number or a string like '2%', got {radius!r}")
+    if not np.isfinite(value) or value <= 0:
+        raise InvalidParameterError(f"radius must be a positive, finite length, got {radius!r}")
+    if value > diagonal:
+        raise InvalidParameterError(f"radius {value:g} is larger than the mesh (bounding-box diagonal {diagonal:g}); "
+                                    "every neighbourhood would be the whole mesh")
+    return value
+
+
+def resolve_options(options: dict, paper_mode: bool) -> dict:
+    """Defaults, then the paper's choices, then the caller's options; unknown names are errors."""
+    unknown = sorted(set(options) - set(DEFAULT_OPTIONS))
+    if unknown:
+        raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(sorted(DEFAULT_OPTIONS))}")
+    resolved = dict(DEFAULT_OPTIONS)
+    if paper_mode:
+        resolved.update(PAPER_OPTIONS)
+        warnings.warn("paper_mode: margin 1, one jump, geodesic-area K and uniform volume weighting as in the paper; "
+                      "per-chart repetition, bilinear lookup and chord-sum geodesics are not reproduced yet",
+                      UserWarning, stacklevel=3)
+    resolved.update(options)
+    return resolved
+
+
+@dataclass
+class FeatureMap:
+    """One feature over the computation texture, at one radius or a stack of radii.
+
+    ``texture`` is ``(W_c, W_c)`` float32 (``(n_radii, W_c, W_c)`` for a scale stack), indexed
+    ``[j, i]`` with v up, NaN outside charts. Diagnostics maps have the same layout: ``n_valid``,
+    ``n_missing`` (relocation failed), ``n_border`` (samples dropped at a mesh border: the
+    neighbourhood is truncated there and values are biased; see ``truncated``).
+    """
+
+    name: str
+    radius: float | np.ndarray
+    texture: np.ndarray
+    n_valid: np.ndarray
+    n_missing: np.ndarray
+    n_border: np.ndarray
+    standard_error: np.ndarray | None = None
+    summary: dict = field(default_factory=dict)
+    settings: dict = field(default_factory=dict)
+    _atlas: object = field(default=None, repr=False)
+    _maps: tuple = field(default=(), repr=False)
+    _index: int = field(default=0, repr=False)
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def truncated(self) -> np.ndarray:
+        """Texels whose neighbourhood was cut by a mesh border (values there are biased)."""
+        return self.n_border > 0
+
+    @property
+    def is_stack(self) -> bool:
+        return np.ndim(self.radius) > 0
+
+    def per_vertex(self, query: str | None = None) -> np.ndarray:
+        """Per-vertex values, ``(n_vertices,)`` (``(n_radii, n_vertices)`` for a stack), one per
+        vertex of ``mesh.positions``: chart-masked bilinear lookup at every corner UV, averaged
+        (``query="texture"``, default), or the estimators evaluated at the corner UVs
+        (``query="direct"``)."""
+        query = query or self.settings.get("query", "texture")
+        if query not in self._cache:  # shared by the features of one computation
+            self._cache[query] = [maps.per_vertex(self._atlas._core, query) for maps in self._maps]
+        values = [per_feature[self._index] for per_feature in self._cache[query]]
+        return values[0] if not self.is_stack else np.stack(values)
+
+
+def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):
+    """Core settings for neighbourhood tiles (no estimator is run, so any feature name will do)."""
+    from .atlas import check_resolution
+
+    opts = resolve_options(options, paper_mode=False)
+    r = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
+    resolution = check_resolution(compute_resolution, "compute_resolution")
+    settings = _core.compute_settings(["mean_curvature"], r, int(samples), resolution, False, float(opts["tau"]),
+                                      int(seed), float(opts["margin"]), int(opts["max_jumps"]), opts["criterion"],
+                                      opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
+                                      float(opts["flat_tol"]), False)
+    return settings, resolution
+
+
+def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,
+                 paper_mode: bool, options: dict) -> dict[str, FeatureMap]:
+    """The work behind :meth:`uvfeat.Atlas.compute`."""
+    from .atlas import check_resolution
+
+    names = feature_names(features)
+    opts = resolve_options(options, paper_mode)
+    diagonal = atlas.mesh.bounding_box_diagonal
+    stack = isinstance(radius, (list, tuple, np.ndarray))
+    radii = [resolve_radius(r, diagonal) for r in (radius if stack else [radius])]
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 4:
+        raise InvalidParameterError(f"samples must be an integer >= 4, got {samples!r}")
+    compute_resolution = check_resolution(compute_resolution, "compute_resolution")
+    if paper_mode and atlas.precision != "f16":
+        warnings.warn("paper_mode: the paper stores buffers as half floats; build the Atlas with precision='f16' "
+                      "to reproduce that too", UserWarning, stacklevel=3)
+    all_maps, timings = [], []
+    for r in radii:
+        settings = _core.compute_settings(names, r, int(samples), compute_resolution, bool(adaptive), float(opts["tau"]),
+                                          int(seed), float(opts["margin"]), int(opts["max_jumps"]), opts["criterion"],
+                                          opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
+                                          float(opts["flat_tol"]), bool(opts["standard_error"]))
+        started = time.perf_counter()
+        all_maps.append(_core.compute_maps(atlas._core, settings))
+        timings.append(time.perf_counter() - started)
+    described = dict(opts, samples=int(samples), compute_resolution=compute_resolution, adaptive=bool(adaptive),
+                     seed=int(seed), paper_mode=bool(paper_mode), radii=radii, resolution=atlas.resolution,
+                     precision=atlas.precision, features_s=timings)
+
+    def gather(get):
+        arrays = [get(m) for m in all_maps]
+        return np.stack(arrays) if stack else arrays[0]
+
+    out, cache = {}, {}
+    for k, name in enumerate(names):
+        errors = [m.standard_errors(k) for m in all_maps]
+        out[name] = FeatureMap(
+            name=name,
+            radius=np.array(radii) if stack else radii[0],
+            texture=gather(lambda m, k=k: m.values(k)),
+            n_valid=gather(lambda m: m.n_valid),
+            n_missing=gather(lambda m: m.n_missing),
+            n_border=gather(lambda m: m.n_border),
+            standard_error=None if errors[0] is None else (np.stack(errors) if stack else errors[0]),
+            summary=all_maps[0].summary if not stack else [m.summary for m in all_maps],
+            settings=described,
+            _atlas=atlas,
+            _maps=tuple(all_maps),
+            _index=k,
+            _cache=cache,
+        )
+    return out
