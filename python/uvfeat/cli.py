@@ -83,6 +83,89 @@ def _cmd_atlas(args) -> int:
     return 0
 
 
+def _radius_tag(radius) -> str:
+    return str(radius).strip().replace("%", "pct").replace(".", "p")
+
+
+def _write_features(mesh, args, console, load_notes: list[str], started: float) -> dict:
+    """Computes the features at every radius and writes per-vertex files, maps and a summary."""
+    import numpy as np
+    import trimesh
+
+    from .atlas import Atlas
+    from .features import feature_names
+    from .images import save_feature_figure, vertex_colours
+
+    names = feature_names(args.feature)
+    radii = [r.strip() for r in args.radius.split(",") if r.strip()]
+    os.makedirs(args.out, exist_ok=True)
+    options = {"query": args.query, "standard_error": args.standard_error}
+    summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
+               "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,
+                            "compute_resolution": args.compute_resolution, "adaptive": args.adaptive,
+                            "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query}}
+    with _steps(console, 1 + 3 * len(radii)) as advance:
+        advance("pre-processing + rasterising", done=False)
+        atlas = Atlas(mesh, resolution=args.resolution, precision="f16" if args.paper_mode else "f32")
+        summary["diagnostics"] = atlas.diagnostics
+        summary["warnings"] += atlas.warnings()
+        timings = dict(atlas.timings)
+        advance("buffers ready")
+        for radius in radii:
+            advance(f"features at r = {radius}", done=False)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                maps = atlas.compute(names, radius, samples=args.samples, compute_resolution=args.compute_resolution,
+                                     adaptive=args.adaptive, seed=args.seed, paper_mode=args.paper_mode, **options)
+            summary["warnings"] += sorted({str(w.message) for w in caught})
+            first = next(iter(maps.values()))
+            advance(f"per-vertex values at r = {radius}")
+            started_pv = time.perf_counter()
+            per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+            tag = _radius_tag(radius)
+            arrays = {f"{n}": v for n, v in per_vertex.items()}
+            np.savez_compressed(os.path.join(args.out, f"per_vertex_r{tag}.npz"), positions=mesh.positions,
+                                faces=mesh.faces, radius=first.radius, **arrays)
+            ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
+            for n, v in per_vertex.items():
+                ply.vertex_attributes[n] = v.astype(np.float32)
+            ply.visual.vertex_colors = vertex_colours(names[0], per_vertex[names[0]])
+            ply.export(os.path.join(args.out, f"per_vertex_r{tag}.ply"))
+            time_pv = time.perf_counter() - started_pv
+            advance(f"pictures at r = {radius}")
+            for n, m in maps.items():
+                np.save(os.path.join(args.out, f"{n}_r{tag}.npy"), m.texture)
+                save_feature_figure(os.path.join(args.out, f"{n}_r{tag}.png"), n, m.texture, m.radius, mesh.name)
+            summary["radii"][radius] = {
+                "radius": first.radius,
+                "features_s": first.settings["features_s"][0],
+                "per_vertex_s": time_pv,
+                "diagnostics": first.summary,
+                "per_vertex_range": {n: [float(np.nanmin(v)), float(np.nanmax(v))] for n, v in per_vertex.items()},
+            }
+        summary["timings_s"] = dict(timings, total=time.perf_counter() - started)
+        with open(os.path.join(args.out, "summary.json"), "w") as f:
+            json.dump(summary, f, indent=2, default=float)
+    console.print(atlas.summary())
+    for radius, info in summary["radii"].items():
+        d = info["diagnostics"]
+        console.print(f"r = {radius} ({info['radius']:.4g}): {info['features_s']:.2f} s, "
+                      f"{d['mean_valid_samples']:.0f} samples/texel, {100 * d['missing_fraction']:.2f} % missing, "
+                      f"{d['truncated_texels']} texels truncated by mesh borders")
+    for note in summary["warnings"]:
+        console.print(f"[yellow]note:[/yellow] {note}")
+    console.print(f"wrote per-vertex .ply/.npz, maps .npy/.png and summary.json to {args.out}")
+    return summary
+
+
+def _cmd_compute(args) -> int:
+    console = _console()
+    started = time.perf_counter()
+    mesh, notes = _load(args.mesh, args)
+    _write_features(mesh, args, console, notes, started)
+    return 0
+
+
 def _cmd_demo(args) -> int:
     from .examples import spot_path
 
@@ -91,14 +174,31 @@ def _cmd_demo(args) -> int:
     started = time.perf_counter()
     args.uv, args.strict_uv, args.precision = "require", False, "f32"
     mesh, notes = _load(spot_path(), args)
-    args.out = os.path.join(args.out, "atlas")
+    root = args.out
+    args.out = os.path.join(root, "atlas")
     _write_atlas(mesh, args, console, notes, started)
+    args.out = os.path.join(root, "features")
+    args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
+    args.samples, args.compute_resolution, args.adaptive, args.paper_mode = 256, args.compute_resolution, False, False
+    args.seed, args.query, args.standard_error = 0, "texture", False
+    _write_features(mesh, args, console, [], time.perf_counter())
     return 0
 
 
 def _add_atlas_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--resolution", type=int, default=1024, help="geometry-buffer size W_g in texels (default 1024)")
     parser.add_argument("--out", default="uvfeat-out", help="output folder (created if missing)")
+
+
+def _feature_names():
+    from .features import FEATURES
+
+    return FEATURES
+
+
+def _add_feature_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--samples", type=int, default=256, help="Monte Carlo samples per texel (default 256)")
+    parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -119,17 +219,39 @@ def build_parser() -> argparse.ArgumentParser:
     atlas.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising them")
     atlas.set_defaults(handler=_cmd_atlas)
 
-    demo = commands.add_parser("demo", help="run on the built-in Spot mesh and write pictures")
+    compute = commands.add_parser("compute", help="compute features and write per-vertex values, maps and pictures",
+                                  description="Writes per_vertex_r*.ply (vertex properties + colours) and .npz, "
+                                  "FEATURE_r*.npy and .png maps (v up), and summary.json.")
+    compute.add_argument("mesh", help="mesh file (obj, ply, glb, gltf, off, stl)")
+    compute.add_argument("--feature", default="mean_curvature",
+                         help="comma-separated names, or 'all' (" + ", ".join(_feature_names()) + ")")
+    compute.add_argument("--radius", default="2%", help="radius in object units or %% of the bounding-box diagonal; "
+                         "comma-separated for several scales (default 2%%)")
+    _add_atlas_options(compute)
+    _add_feature_options(compute)
+    compute.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
+    compute.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising")
+    compute.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (SPEC §1.8)")
+    compute.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
+    compute.add_argument("--seed", type=int, default=0)
+    compute.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
+    compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
+    compute.set_defaults(handler=_cmd_compute)
+
+    demo = commands.add_parser("demo", help="run on the built-in Spot mesh: atlas pictures and features at 3 radii")
     _add_atlas_options(demo)
+    demo.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
     demo.set_defaults(handler=_cmd_demo)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
-    if getattr(args, "resolution", 1) <= 0:
-        _console().print(f"[red]error:[/red] --resolution must be a positive integer, got {args.resolution}")
-        return 2
+    for option in ("resolution", "compute_resolution"):
+        if getattr(args, option, 1) <= 0:
+            _console().print(f"[red]error:[/red] --{option.replace('_', '-')} must be a positive integer, "
+                             f"got {getattr(args, option)}")
+            return 2
     try:
         return args.handler(args)
     except UvfeatError as exc:

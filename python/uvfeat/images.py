@@ -104,3 +104,58 @@ def save_atlas_pictures(atlas, out_dir: str | os.PathLike) -> dict[str, str]:
         paths[name] = os.path.join(os.fspath(out_dir), f"{name}.png")
         save_png(paths[name], rgba)
     return paths
+
+
+#: Features whose sign matters get a diverging colormap centred on 0.
+SIGNED_FEATURES = {"mean_curvature", "gaussian_curvature", "k1", "k2", "shape_index"}
+
+#: Units shown on colourbars.
+FEATURE_UNITS = {
+    "bending_energy": "1/length²", "open_volume": "length³", "volume_invariant": "length³",
+    "mean_curvature": "1/length", "gaussian_curvature": "1/length²", "k1": "1/length", "k2": "1/length",
+    "shape_index": "", "curvedness": "1/length",
+}
+
+
+def colour_range(name: str, values: np.ndarray, percentiles: tuple[float, float] = (2.0, 98.0)) -> tuple[str, float, float]:
+    """Colormap and robust range of a feature: symmetric percentile clamp with a diverging map for
+    signed features ([-1, 1] for the shape index), percentiles with viridis otherwise."""
+    finite = values[np.isfinite(values)]
+    if name == "shape_index":
+        return "RdBu_r", -1.0, 1.0
+    if finite.size == 0:
+        return ("RdBu_r" if name in SIGNED_FEATURES else "viridis"), -1.0, 1.0
+    if name in SIGNED_FEATURES:
+        bound = float(np.percentile(np.abs(finite), percentiles[1])) or 1.0
+        return "RdBu_r", -bound, bound
+    low, high = (float(x) for x in np.percentile(finite, percentiles))
+    return "viridis", low, high if high > low else low + 1.0
+
+
+def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
+    """(n, 4) uint8 colours of per-vertex values (grey where NaN), same mapping as the pictures."""
+    import matplotlib
+
+    cmap, low, high = colour_range(name, values)
+    t = np.clip((np.nan_to_num(values, nan=low) - low) / (high - low), 0.0, 1.0)
+    rgba = (matplotlib.colormaps[cmap](t) * 255).astype(np.uint8)
+    rgba[~np.isfinite(values)] = (128, 128, 128, 255)
+    return rgba
+
+
+def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray, radius: float, mesh_name: str = "") -> None:
+    """The feature map as a picture with a colourbar (v up, robust range, NaN transparent)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cmap, low, high = colour_range(name, texture)
+    fig, ax = plt.subplots(figsize=(6.4, 5.4), dpi=120)
+    image = ax.imshow(np.flipud(texture), cmap=cmap, vmin=low, vmax=high, interpolation="nearest")
+    ax.set_axis_off()
+    unit = FEATURE_UNITS.get(name, "")
+    ax.set_title(f"{mesh_name} {name} (r = {radius:.4g})".strip())
+    fig.colorbar(image, ax=ax, fraction=0.046, pad=0.04, label=unit)
+    fig.savefig(os.fspath(path), bbox_inches="tight", transparent=False)
+    plt.close(fig)
