@@ -17,7 +17,7 @@ pub use gaussian_curvature::{
     gaussian_curvature_geodesic_area, gaussian_curvature_geodesic_area_error, gaussian_curvature_moments,
     GaussianMethod,
 };
-pub use mean_curvature::{mean_curvature, mean_curvature_error};
+pub use mean_curvature::{mean_curvature, mean_curvature_error, radial_correction};
 pub use open_volume::{ball_volume, open_volume, open_volume_error};
 pub use principal_curvatures::principal_curvatures;
 pub use shape_index::shape_index;
@@ -107,6 +107,8 @@ pub struct EstimatorSettings {
     pub gaussian_method: GaussianMethod,
     /// Shape index is NaN where curvedness `< flat_tol / r`.
     pub flat_tol: f64,
+    /// Weighting of the volume integrands.
+    pub volume_weighting: VolumeWeighting,
 }
 
 /// Every feature of one neighbourhood.
@@ -120,8 +122,8 @@ pub struct Estimates {
 
 /// Evaluates every estimator on the sums of one neighbourhood.
 pub fn estimate(stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> Estimates {
-    let r = settings.radius;
-    let h = mean_curvature(&stats.elevation, r);
+    let (r, weighting) = (settings.radius, settings.volume_weighting);
+    let h = mean_curvature(&stats.elevation, &stats.radial, r, weighting);
     let (k, (k1, k2, clamped)) = match settings.gaussian_method {
         GaussianMethod::Moments => {
             let k = gaussian_curvature_moments(&stats.normal_curvature);
@@ -137,8 +139,8 @@ pub fn estimate(stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> Est
     let c = curvedness(k1, k2);
     let values = [
         bending_energy(&stats.bending),
-        open_volume(&stats.elevation, r),
-        volume_invariant(&stats.elevation, r),
+        open_volume(&stats.elevation, &stats.radial, r, weighting),
+        volume_invariant(&stats.elevation, &stats.radial, r, weighting),
         h,
         k,
         k1,

@@ -80,6 +80,8 @@ pub enum VolumeWeighting {
 pub struct NeighbourhoodStats {
     /// `g = sin(alpha)` with the volume weighting (mean curvature, sphere volumes).
     pub elevation: WeightedSums,
+    /// `g = rho / r` with the volume weighting: the pattern's empirical radial moment.
+    pub radial: WeightedSums,
     /// `g = |n - n_i|^2 / rho^2`, `w = dA`, `rho >= rho_min` (bending energy).
     pub bending: WeightedSums,
     /// `g = k_i = -2 sin(alpha)/rho`, `w = dA (rho/r)^2`, `rho >= rho_min` (curvature moments).
@@ -108,6 +110,7 @@ impl NeighbourhoodStats {
                 VolumeWeighting::Uniform => 1.0,
             };
             self.elevation.add(w, s.sin_alpha);
+            self.radial.add(w, s.distance / settings.radius);
             let inside = arc_distance(s.distance, s.sin_alpha) < settings.radius;
             self.geodesic_disk.add(s.area, if inside { 1.0 } else { 0.0 });
             if s.distance >= settings.rho_min {
@@ -137,6 +140,7 @@ impl NeighbourhoodStats {
     /// Pools another stage's statistics.
     pub fn merge(&mut self, other: &Self) {
         self.elevation.merge(&other.elevation);
+        self.radial.merge(&other.radial);
         self.bending.merge(&other.bending);
         self.normal_curvature.merge(&other.normal_curvature);
         self.geodesic_disk.merge(&other.geodesic_disk);

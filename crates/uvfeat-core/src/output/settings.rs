@@ -111,6 +111,11 @@ impl ComputeSettings {
 
     /// Estimator part of the settings.
     pub fn estimators(&self) -> EstimatorSettings {
-        EstimatorSettings { radius: self.radius, gaussian_method: self.gaussian_method, flat_tol: self.flat_tol }
+        EstimatorSettings {
+            radius: self.radius,
+            gaussian_method: self.gaussian_method,
+            flat_tol: self.flat_tol,
+            volume_weighting: self.volume_weighting,
+        }
     }
 }

@@ -1,0 +1,49 @@
+"""Analytic meshes with several parameterisations, shared by the feature tests."""
+
+import functools
+
+import numpy as np
+import trimesh
+
+import uvfeat
+
+
+@functools.lru_cache(maxsize=None)
+def lat_long_sphere() -> uvfeat.Mesh:
+    """Unit sphere, one chart with a seam and two poles (25,280 triangles)."""
+    return uvfeat.shapes.uv_sphere(1.0, 160, 80)
+
+
+@functools.lru_cache(maxsize=None)
+def xatlas_icosphere() -> uvfeat.Mesh:
+    """Unit icosphere (20,480 triangles) with an xatlas multi-chart atlas."""
+    ico = trimesh.creation.icosphere(subdivisions=5)
+    return uvfeat.Mesh(ico.vertices, ico.faces, name="icosphere").with_atlas(resolution=1024)
+
+
+@functools.lru_cache(maxsize=None)
+def torus_single() -> uvfeat.Mesh:
+    return uvfeat.shapes.torus(2.0, 0.5, 256, 128)
+
+
+@functools.lru_cache(maxsize=None)
+def torus_xatlas() -> uvfeat.Mesh:
+    t = torus_single()
+    return uvfeat.Mesh(t.positions, t.faces, name="torus (xatlas)").with_atlas(resolution=1024)
+
+
+def torus_truth(mesh: uvfeat.Mesh, major: float = 2.0, minor: float = 0.5):
+    """Analytic H and K at the vertices of a torus around z."""
+    p = mesh.positions
+    ring = np.hypot(p[:, 0], p[:, 1]) - major
+    cos_v = np.clip(ring / minor, -1.0, 1.0)
+    h = (major + 2 * minor * cos_v) / (2 * minor * (major + minor * cos_v))
+    k = cos_v / (minor * (major + minor * cos_v))
+    return h, k, cos_v
+
+
+def range_normalised_error(values: np.ndarray, reference: np.ndarray) -> float:
+    """SPEC §5.1 %AE / 100: mean |f - f_ref| / (Q99 - Q1 of f_ref)."""
+    ok = np.isfinite(values) & np.isfinite(reference)
+    q1, q99 = np.percentile(reference[ok], [1, 99])
+    return float(np.mean(np.abs(values[ok] - reference[ok])) / (q99 - q1))
