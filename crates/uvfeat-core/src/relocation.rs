@@ -36,7 +36,7 @@ pub fn locate(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps:
         let offset = target - origin;
         let steps = (offset.abs().max_element() * resolution).ceil().max(1.0);
         let step = offset / steps;
-        let Some(exit) = (1..=steps as usize).find(|&k| atlas.chart_at(origin + step * k as f64) != chart) else {
+        let Some(exit) = first_exit(atlas, origin, step, steps as usize, chart) else {
             return Located::Inside { chart, uv: target, m_path, jumps };
         };
         let last_inside = origin + step * (exit - 1) as f64;
@@ -54,6 +54,24 @@ pub fn locate(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps:
         chart = side.adjacent_chart;
         m_path = map.m * m_path;
         jumps += 1;
+    }
+}
+
+/// First `k` in `1..=steps` with `origin + k step` outside `chart` (SPEC §1.5 march), skipping
+/// ahead by the chart distance of the current texel: the points skipped are provably inside.
+fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
+    let coverage = &atlas.coverage;
+    let mut k = 0;
+    loop {
+        let here = atlas.texel_at(origin + step * k as f64);
+        let skip = here.filter(|&t| coverage.chart[t] == chart).map_or(1, |t| coverage.chart_distance[t].max(2) - 1);
+        k += usize::from(skip);
+        if k > steps {
+            return None;
+        }
+        if atlas.chart_at(origin + step * k as f64) != chart {
+            return Some(k);
+        }
     }
 }
 

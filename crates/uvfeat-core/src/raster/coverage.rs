@@ -38,6 +38,10 @@ pub struct Coverage {
     pub chart: Vec<i32>,
     /// Boundary side (index into `Topology::sides`) closest to a border texel; -1 = not a border texel.
     pub border_side: Vec<i32>,
+    /// Chebyshev distance (texels, capped at 255) to the nearest texel of another chart, the
+    /// empty space or the domain edge: every texel closer than this shares this texel's chart, so
+    /// a march may jump `distance - 1` texels at once (the relocation's speed-up at large radii).
+    pub chart_distance: Vec<u8>,
     /// Counts for reports.
     pub diagnostics: CoverageDiagnostics,
 }
@@ -52,10 +56,12 @@ impl Coverage {
             bary: vec![[0.0; 2]; n],
             chart: vec![-1; n],
             border_side: vec![-1; n],
+            chart_distance: Vec::new(),
             diagnostics: CoverageDiagnostics::default(),
         };
         coverage.rasterise_triangles(topology);
         coverage.rasterise_boundaries(topology);
+        coverage.chart_distance = chart_distance(&coverage.chart, resolution);
         coverage
     }
 
@@ -132,5 +138,78 @@ impl Coverage {
     }
 
     /// Approximate bytes per texel of coverage plus one frame of buffers, for memory checks.
-    pub const BYTES_PER_TEXEL: u64 = 20 + 36 + 24;
+    pub const BYTES_PER_TEXEL: u64 = 21 + 36 + 24;
+}
+
+/// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation).
+fn chart_distance(chart: &[i32], r: usize) -> Vec<u8> {
+    let mut d = vec![u8::MAX; r * r];
+    let neighbours = |i: usize, j: usize| {
+        [(-1i64, -1i64), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)]
+            .into_iter()
+            .map(move |(di, dj)| (i as i64 + di, j as i64 + dj))
+    };
+    for j in 0..r {
+        for i in 0..r {
+            let c = chart[j * r + i];
+            let edge = neighbours(i, j)
+                .any(|(x, y)| x < 0 || y < 0 || x >= r as i64 || y >= r as i64 || chart[y as usize * r + x as usize] != c);
+            if edge {
+                d[j * r + i] = 1;
+            }
+        }
+    }
+    let relax = |d: &mut [u8], t: usize, from: usize| d[t] = d[t].min(d[from].saturating_add(1));
+    for j in 0..r {
+        for i in 0..r {
+            let t = j * r + i;
+            if i > 0 {
+                relax(&mut d, t, t - 1);
+            }
+            if j > 0 {
+                relax(&mut d, t, t - r);
+                if i > 0 {
+                    relax(&mut d, t, t - r - 1);
+                }
+                if i + 1 < r {
+                    relax(&mut d, t, t - r + 1);
+                }
+            }
+        }
+    }
+    for j in (0..r).rev() {
+        for i in (0..r).rev() {
+            let t = j * r + i;
+            if i + 1 < r {
+                relax(&mut d, t, t + 1);
+            }
+            if j + 1 < r {
+                relax(&mut d, t, t + r);
+                if i + 1 < r {
+                    relax(&mut d, t, t + r + 1);
+                }
+                if i > 0 {
+                    relax(&mut d, t, t + r - 1);
+                }
+            }
+        }
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::chart_distance;
+
+    #[test]
+    fn chart_distance_is_the_chebyshev_distance_to_another_chart() {
+        let r = 9;
+        let mut chart = vec![0; r * r];
+        chart[4 * r + 6] = 1;
+        let d = chart_distance(&chart, r);
+        assert_eq!(d[4 * r + 5], 1); // next to the other chart
+        assert_eq!(d[4 * r + 3], 3); // 3 columns away: texels at distance < 3 are all chart 0... and the edge
+        assert_eq!(d[0], 1); // domain edge
+        assert_eq!(d[2 * r + 2], 3);
+    }
 }
