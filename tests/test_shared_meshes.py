@@ -36,3 +36,24 @@ def test_scans_without_uvs_get_an_xatlas_atlas(shared_mesh, name):
     atlas = uvfeat.Atlas(mesh, 1024)
     assert atlas.diagnostics["covered_texels"] > 0.1 * 1024**2
     assert np.isfinite(atlas.position[atlas.chart >= 0]).all()
+
+
+@pytest.mark.shared
+@pytest.mark.parametrize("name", ["spot_triangulated.obj", "bob_tri.obj", "blub.obj", "pizza.obj"])
+def test_features_on_real_meshes_at_three_radii(shared_mesh, name):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", uvfeat.UVWarning)
+        mesh = uvfeat.load(shared_mesh(name), uv="require")
+    atlas = uvfeat.Atlas(mesh, 1024)
+    for radius in ("1%", "4%", "16%"):
+        maps = atlas.compute(["mean_curvature", "gaussian_curvature", "shape_index"], radius, compute_resolution=256)
+        h = maps["mean_curvature"]
+        assert h.summary["texels"] > 1000
+        values = h.per_vertex()
+        assert values.shape == (mesh.n_vertices,) and np.isfinite(values).mean() > 0.99
+        if radius == "4%":
+            # Pizza's 4,740 charts (1,987 single triangles, many smaller than a texel) still lose
+            # samples where no border texel of a tiny chart survives rasterisation: measured 24 %
+            # with 3 jumps, 6 % with 16; guarded here until the exact triangle walk lands.
+            limit = 0.01 if name != "pizza.obj" else 0.3
+            assert h.summary["missing_fraction"] < limit, h.summary
