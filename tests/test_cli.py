@@ -28,3 +28,25 @@ def test_errors_exit_with_status_2_and_a_message(tmp_path, capsys):
     assert main(["atlas", str(tmp_path / "missing.obj"), "--resolution", "0"]) == 2
     with pytest.raises(SystemExit):
         main(["atlas"])
+
+
+def test_compute_command_writes_per_vertex_files_maps_and_summary(tmp_path):
+    import numpy as np
+    import trimesh
+
+    path = tmp_path / "ico.obj"
+    trimesh.creation.icosphere(3).export(path)
+    out = tmp_path / "out"
+    args = ["compute", str(path), "--feature", "mean_curvature,shape_index", "--radius", "10%,0.3",
+            "--resolution", "256", "--compute-resolution", "64", "--samples", "64", "--out", str(out)]
+    assert main(args) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert set(summary["radii"]) == {"10%", "0.3"}
+    data = np.load(out / "per_vertex_r0p3.npz")
+    assert abs(np.median(data["mean_curvature"]) - 1.0) < 0.1  # unit icosphere
+    ply = trimesh.load(out / "per_vertex_r10pct.ply", process=False)
+    assert len(ply.vertices) == len(data["positions"])
+    for name in ("mean_curvature_r10pct.png", "shape_index_r0p3.npy"):
+        assert (out / name).stat().st_size > 0
+    assert main(["compute", str(path), "--feature", "bogus", "--out", str(out)]) == 2
+    assert main(["compute", str(path), "--radius", "-1", "--out", str(out)]) == 2

@@ -75,12 +75,16 @@ def _write_atlas(mesh, args, console, load_notes: list[str], started: float) -> 
     return summary
 
 
-def _cmd_atlas(args) -> int:
-    console = _console()
-    started = time.perf_counter()
-    mesh, notes = _load(args.mesh, args)
-    _write_atlas(mesh, args, console, notes, started)
-    return 0
+def _on_file(writer):
+    """A command that loads ``args.mesh`` and hands it to ``writer``."""
+
+    def command(args) -> int:
+        started = time.perf_counter()
+        mesh, notes = _load(args.mesh, args)
+        writer(mesh, args, _console(), notes, started)
+        return 0
+
+    return command
 
 
 def _radius_tag(radius) -> str:
@@ -158,14 +162,6 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
     return summary
 
 
-def _cmd_compute(args) -> int:
-    console = _console()
-    started = time.perf_counter()
-    mesh, notes = _load(args.mesh, args)
-    _write_features(mesh, args, console, notes, started)
-    return 0
-
-
 def _cmd_demo(args) -> int:
     from .examples import spot_path
 
@@ -217,7 +213,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="auto: use the file's UVs, xatlas when there are none (default); require: fail "
                        "without UVs; xatlas: always build a new atlas")
     atlas.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising them")
-    atlas.set_defaults(handler=_cmd_atlas)
+    atlas.set_defaults(handler=_on_file(_write_atlas))
 
     compute = commands.add_parser("compute", help="compute features and write per-vertex values, maps and pictures",
                                   description="Writes per_vertex_r*.ply (vertex properties + colours) and .npz, "
@@ -236,7 +232,7 @@ def build_parser() -> argparse.ArgumentParser:
     compute.add_argument("--seed", type=int, default=0)
     compute.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
     compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
-    compute.set_defaults(handler=_cmd_compute)
+    compute.set_defaults(handler=_on_file(_write_features))
 
     demo = commands.add_parser("demo", help="run on the built-in Spot mesh: atlas pictures and features at 3 radii")
     _add_atlas_options(demo)

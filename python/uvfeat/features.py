@@ -57,10 +57,10 @@ def resolve_radius(radius, diagonal: float) -> float:
     """A radius in object units from a number or a percentage string of the bounding-box diagonal
     (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
     if isinstance(radius, str):
-        match = re.fullmatch(r"\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*%\s*", radius)
+        match = re.fullmatch(r"\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(%?)\s*", radius)
         if not match:
             raise InvalidParameterError(f"radius {radius!r}: give a length or a percentage of the diagonal like '2%'")
-        value = float(match.group(1)) / 100.0 * diagonal
+        value = float(match.group(1)) * (diagonal / 100.0 if match.group(2) else 1.0)
     elif isinstance(radius, (int, float, np.floating, np.integer)) and not isinstance(radius, bool):
         value = float(radius)
     else:
