@@ -4,7 +4,7 @@
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::features::{estimate, relative_standard_error, NeighbourhoodStats};
-use crate::sampling::{centre_at, disk_pattern, ellipse_area, gather, Sample, SampleCounts};
+use crate::sampling::{centre_at, disk_pattern, ellipse_area, gather, Sample, SampleCounts, TURNS};
 use glam::DVec2;
 
 /// Interleaved batches behind the standard errors.
@@ -111,7 +111,9 @@ pub fn evaluate_point(
     result
 }
 
-/// Standard errors from the spread of the estimates of `BATCHES` interleaved batches.
+/// Standard errors from the spread of the estimates of `BATCHES` interleaved batches. A batch
+/// takes whole groups of turned copies of a base point (see `disk_pattern`), so that each batch
+/// keeps the pattern's cancellation of the anisotropy.
 fn batch_standard_errors(
     samples: &[Sample],
     normal: &glam::DVec3,
@@ -122,8 +124,9 @@ fn batch_standard_errors(
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
     let mut batches = [NeighbourhoodStats::default(); BATCHES];
-    for (i, sample) in samples.iter().enumerate() {
-        batches[i % BATCHES].accumulate(std::slice::from_ref(sample), *normal, &stats_settings);
+    for sample in samples {
+        let group = sample.pattern_index as usize / TURNS;
+        batches[group % BATCHES].accumulate(std::slice::from_ref(sample), *normal, &stats_settings);
     }
     // Each batch holds about 1/BATCHES of the samples, so its absolute areas are scaled back up.
     let pooled_scale = if pooled { first as f64 / settings.samples as f64 } else { 1.0 };

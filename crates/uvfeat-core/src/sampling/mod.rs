@@ -9,4 +9,4 @@ pub use neighbourhood::{
     arc_distance, centre_at, ellipse_area, gather, Centre, Criterion, Sample, SampleCounts, SamplerSettings,
 };
 pub use tile::{neighbourhood_tile, NeighbourhoodTile};
-pub use pattern::{concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle};
+pub use pattern::{concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, TURNS};

@@ -61,6 +61,8 @@ pub struct Sample {
     pub distance: f64,
     /// `sin(alpha_i) = n . (q_i - p) / rho_i`.
     pub sin_alpha: f64,
+    /// Index of the pattern point the sample came from.
+    pub pattern_index: u32,
 }
 
 /// What happened to the pattern samples of one neighbourhood.
@@ -143,7 +145,7 @@ pub fn gather(
         * DMat2::from_angle(psi);
     let r = settings.radius;
     let mut counts = SampleCounts::default();
-    for &disk in pattern {
+    for (pattern_index, &disk) in pattern.iter().enumerate() {
         let target = centre.uv + ellipse * disk;
         let (chart, uv, m_path) = match locate(atlas, centre.uv, centre.chart, target, settings.max_jumps) {
             Located::Inside { chart, uv, m_path, .. } => (chart, uv, m_path),
@@ -185,6 +187,7 @@ pub fn gather(
             area: point.area_element * m_path.determinant().abs() * sample_area,
             distance,
             sin_alpha,
+            pattern_index: pattern_index as u32,
         });
     }
     counts
