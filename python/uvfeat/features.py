@@ -25,7 +25,7 @@ FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature
 #: Options of ``compute`` beyond the named arguments, with the SPEC §1.10 defaults.
 DEFAULT_OPTIONS = {
     "margin": 1.25,
-    "max_jumps": 3,
+    "max_jumps": 8,
     "criterion": "euclidean",
     "gaussian_method": "moments",
     "volume_weighting": "distance",
@@ -133,6 +133,13 @@ class FeatureMap:
         return values[0] if not self.is_stack else np.stack(values)
 
 
+def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
+    return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), float(opts["tau"]), int(seed),
+                                  float(opts["margin"]), int(opts["max_jumps"]), opts["criterion"],
+                                  opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
+                                  float(opts["flat_tol"]), bool(opts["standard_error"]))
+
+
 def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):
     """Core settings for neighbourhood tiles (no estimator is run, so any feature name will do)."""
     from .atlas import check_resolution
@@ -140,11 +147,7 @@ def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, opti
     opts = resolve_options(options, paper_mode=False)
     r = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
     resolution = check_resolution(compute_resolution, "compute_resolution")
-    settings = _core.compute_settings(["mean_curvature"], r, int(samples), resolution, False, float(opts["tau"]),
-                                      int(seed), float(opts["margin"]), int(opts["max_jumps"]), opts["criterion"],
-                                      opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
-                                      float(opts["flat_tol"]), False)
-    return settings, resolution
+    return _core_settings(["mean_curvature"], r, samples, resolution, False, seed, opts), resolution
 
 
 def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,
@@ -165,10 +168,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
                       "to reproduce that too", UserWarning, stacklevel=3)
     all_maps, timings = [], []
     for r in radii:
-        settings = _core.compute_settings(names, r, int(samples), compute_resolution, bool(adaptive), float(opts["tau"]),
-                                          int(seed), float(opts["margin"]), int(opts["max_jumps"]), opts["criterion"],
-                                          opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
-                                          float(opts["flat_tol"]), bool(opts["standard_error"]))
+        settings = _core_settings(names, r, samples, compute_resolution, adaptive, seed, opts)
         started = time.perf_counter()
         all_maps.append(_core.compute_maps(atlas._core, settings))
         timings.append(time.perf_counter() - started)

@@ -152,7 +152,7 @@ impl PyAtlas {
 
     /// SPEC §1.5 `locate`: `(status, chart, uv, M_path, jumps)`; status is "inside", "border"
     /// (off the surface) or "missing".
-    #[pyo3(signature = (start, chart, target, max_jumps = 3))]
+    #[pyo3(signature = (start, chart, target, max_jumps = 8))]
     fn locate(&self, start: [f64; 2], chart: i32, target: [f64; 2], max_jumps: u32) -> (&'static str, i32, Option<[f64; 2]>, Option<Matrix>, u32) {
         match locate(&self.inner, DVec2::from_array(start), chart, DVec2::from_array(target), max_jumps) {
             Located::Inside { chart, uv, m_path, jumps } => ("inside", chart, Some(uv.to_array()), Some(matrix(m_path)), jumps),

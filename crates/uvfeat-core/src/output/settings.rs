@@ -18,7 +18,7 @@ pub struct ComputeSettings {
     pub resolution: usize,
     /// Ellipse coverage margin `m` (1.25).
     pub margin: f64,
-    /// Seams a sample may cross (3).
+    /// Seams a sample may cross (8; SPEC 3, paper 1: fragmented atlases need more).
     pub max_jumps: u32,
     /// Neighbourhood criterion (Euclidean).
     pub criterion: Criterion,
@@ -49,7 +49,7 @@ impl ComputeSettings {
             samples: 256,
             resolution: 512,
             margin: 1.25,
-            max_jumps: 3,
+            max_jumps: 8,
             criterion: Criterion::Euclidean,
             seed: 0,
             adaptive: false,
