@@ -114,7 +114,6 @@ impl Frame {
     pub fn new(topology: &Topology, input_positions: &[DVec3]) -> Result<Self> {
         let positions = topology.geometric_positions(input_positions)?;
         let normals = vertex_normals(&positions, &topology.faces);
-        let seam_maps = seam_maps(topology, &positions);
         let face_maps: Vec<Option<FaceMap>> = topology
             .faces
             .par_iter()
@@ -130,6 +129,29 @@ impl Frame {
             .par_iter()
             .map(|m| m.map_or(zero, |m| Distortion::from_metric(m.jacobian.metric())))
             .collect();
+        let seam_maps = seam_maps(topology, &positions, |f| face_maps[f as usize].map(|m| m.jacobian));
         Ok(Self { positions, normals, distortion, seam_maps, face_maps })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn affine_map_is_recovered_exactly() {
+        // P(u, v) = (2u + v, 3v, u - v)
+        let p = |t: DVec2| DVec3::new(2.0 * t.x + t.y, 3.0 * t.y, t.x - t.y);
+        let uv = [DVec2::new(0.1, 0.2), DVec2::new(0.7, 0.3), DVec2::new(0.2, 0.9)];
+        let map = FaceMap::new(uv.map(p), [DVec3::Z; 3], uv).unwrap();
+        assert!((map.jacobian.pu - DVec3::new(2.0, 0.0, 1.0)).length() < 1e-12);
+        assert!((map.jacobian.pv - DVec3::new(1.0, 3.0, -1.0)).length() < 1e-12);
+        let d = DVec2::new(0.3, -0.2);
+        let w = map.jacobian.pu * d.x + map.jacobian.pv * d.y;
+        assert!((map.jacobian.pseudo_inverse(w).unwrap() - d).length() < 1e-12);
+        let inside = DVec2::new(0.3, 0.4);
+        assert!((map.position(inside) - p(inside)).length() < 1e-12);
+        // Flat normals: the smooth lift is zero.
+        assert!((map.smooth_position(inside) - p(inside)).length() < 1e-12);
     }
 }

@@ -1,7 +1,7 @@
 //! NumPy <-> Rust conversion at the edge (array contract: float64 (n, 3) positions, int64 (m, 3)
 //! faces, C-contiguous; outputs are new arrays).
 
-use numpy::ndarray::{Array, Dimension, IxDyn};
+use numpy::ndarray::{Array, IxDyn};
 use numpy::{Element, IntoPyArray, PyArrayDyn, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -21,7 +21,6 @@ pub fn rows<T: Element + Copy, const N: usize>(array: &PyReadonlyArray2<'_, T>, 
 /// A new NumPy array of `shape` from flat row-major data.
 pub fn to_numpy<'py, T: Element>(py: Python<'py>, data: Vec<T>, shape: &[usize]) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
     let array = Array::from_shape_vec(IxDyn(shape), data).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    debug_assert_eq!(array.raw_dim().ndim(), shape.len());
     Ok(array.into_pyarray(py))
 }
 

@@ -33,7 +33,8 @@ pub struct TopologyDiagnostics {
     pub input_vertices: usize,
     /// Geometric vertices after welding.
     pub geometric_vertices: usize,
-    /// Faces with a zero-area UV triangle: skipped, their edges become borders.
+    /// Faces with a zero-area UV triangle (or corners that weld together): skipped, their edges
+    /// become borders.
     pub degenerate_uv_faces: usize,
     /// Faces whose UV triangle is clockwise (mirrored charts).
     pub mirrored_uv_faces: usize,

@@ -33,8 +33,13 @@ impl SeamMap {
 /// 3D the metric is singular and the map falls back to the similarity (with mirroring) that carries
 /// one UV edge onto the other.
 ///
-/// `positions` are the geometric vertex positions of the frame; maps are O(#seams) per frame.
-pub fn seam_maps(topology: &Topology, positions: &[DVec3]) -> Vec<Option<SeamMap>> {
+/// `positions` are the geometric vertex positions of the frame and `jacobian(face)` the frame's
+/// Jacobian of a face (computed once per frame by the caller); maps are O(#seams) per frame.
+pub fn seam_maps(
+    topology: &Topology,
+    positions: &[DVec3],
+    jacobian: impl Fn(u32) -> Option<Jacobian> + Sync,
+) -> Vec<Option<SeamMap>> {
     topology
         .sides
         .par_iter()
@@ -43,20 +48,28 @@ pub fn seam_maps(topology: &Topology, positions: &[DVec3]) -> Vec<Option<SeamMap
             let ([a, b], [ua_a, ua_b]) = topology.side_endpoints(side);
             let ub_a = uv_of_vertex(&topology.faces, &topology.corner_uvs, other_face, a);
             let ub_b = uv_of_vertex(&topology.faces, &topology.corner_uvs, other_face, b);
-            let m = hinge_map(topology, positions, side.face, other_face, a, b)
+            let m = hinge_map(topology, positions, &jacobian, side.face, other_face, a, b)
                 .unwrap_or_else(|| similarity_map(topology, side.face, other_face, ub_b - ub_a, ua_b - ua_a));
             Some(SeamMap { origin_from: ua_a, origin_to: ub_a, m })
         })
         .collect()
 }
 
-fn hinge_map(topology: &Topology, positions: &[DVec3], face_a: u32, face_b: u32, a: u32, b: u32) -> Option<DMat2> {
+fn hinge_map(
+    topology: &Topology,
+    positions: &[DVec3],
+    jacobian: &impl Fn(u32) -> Option<Jacobian>,
+    face_a: u32,
+    face_b: u32,
+    a: u32,
+    b: u32,
+) -> Option<DMat2> {
     let xa = positions[a as usize];
     let e = (positions[b as usize] - xa).try_normalize()?;
     let frame = |face: u32, outward: bool| -> Option<(DVec2, DVec2)> {
         let tri = topology.faces[face as usize];
         let x = tri.map(|v| positions[v as usize]);
-        let jac = Jacobian::of_triangle(x, topology.corner_uvs[face as usize])?;
+        let jac = jacobian(face)?;
         let third = tri.iter().find(|&&v| v != a && v != b).map(|&v| positions[v as usize])?;
         let normal = (x[1] - x[0]).cross(x[2] - x[0]);
         let mut m = e.cross(normal).try_normalize()?;

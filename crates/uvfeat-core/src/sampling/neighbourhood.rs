@@ -4,7 +4,7 @@
 
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
-use crate::lookup::{evaluate_face, surface_point};
+use crate::lookup::surface_point;
 use crate::raster::Precision;
 use crate::relocation::{locate, Located};
 use glam::{DMat2, DVec2, DVec3};
@@ -158,11 +158,7 @@ pub fn gather(
                 continue;
             }
         };
-        let point = match atlas.texel_at(uv).filter(|&t| atlas.coverage.chart[t] == chart) {
-            Some(t) => evaluate_face(atlas, atlas.coverage.face[t] as u32, uv),
-            None => surface_point(atlas, uv, chart),
-        };
-        let Some(point) = point else {
+        let Some(point) = surface_point(atlas, uv, chart) else {
             counts.missing += 1;
             continue;
         };
