@@ -63,9 +63,8 @@ impl Atlas {
     /// # Errors
     /// Vertex count mismatch or non-finite positions; the atlas is unchanged then.
     pub fn update(&mut self, positions: &[DVec3]) -> Result<()> {
-        let frame = Frame::new(&self.topology, positions)?;
-        self.buffers.refresh(&self.topology, &self.coverage, &frame, self.precision);
-        self.frame = frame;
+        self.frame.refresh(&self.topology, positions)?;
+        self.buffers.refresh(&self.topology, &self.coverage, &self.frame, self.precision);
         Ok(())
     }
 

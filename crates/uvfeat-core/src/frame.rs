@@ -112,27 +112,46 @@ impl Frame {
     /// # Errors
     /// Vertex count mismatch or non-finite positions (see [`Topology::geometric_positions`]).
     pub fn new(topology: &Topology, input_positions: &[DVec3]) -> Result<Self> {
+        let n_faces = topology.faces.len();
+        let mut frame = Self {
+            positions: Vec::new(),
+            normals: Vec::new(),
+            distortion: vec![ZERO_DISTORTION; n_faces],
+            seam_maps: Vec::new(),
+            face_maps: vec![None; n_faces],
+        };
+        frame.refresh(topology, input_positions)?;
+        Ok(frame)
+    }
+
+    /// Recomputes the frame in place for new input positions: the per-face tables are
+    /// overwritten, not reallocated (they are the bulk of a frame's memory traffic). On error
+    /// nothing has changed.
+    ///
+    /// # Errors
+    /// As [`Frame::new`].
+    pub fn refresh(&mut self, topology: &Topology, input_positions: &[DVec3]) -> Result<()> {
         let positions = topology.geometric_positions(input_positions)?;
         let normals = vertex_normals(&positions, &topology.faces);
-        let face_maps: Vec<Option<FaceMap>> = topology
-            .faces
-            .par_iter()
-            .zip(&topology.corner_uvs)
-            .zip(&topology.face_chart)
-            .map(|((tri, uv), &chart)| {
+        self.face_maps
+            .par_iter_mut()
+            .zip(self.distortion.par_iter_mut())
+            .zip(topology.faces.par_iter().zip(&topology.corner_uvs).zip(&topology.face_chart))
+            .for_each(|((map, distortion), ((tri, uv), &chart))| {
                 let gather = |values: &[DVec3]| tri.map(|v| values[v as usize]);
-                (chart >= 0).then(|| FaceMap::new(gather(&positions), gather(&normals), *uv)).flatten()
-            })
-            .collect();
-        let zero = Distortion { sigma1: 0.0, sigma2: 0.0, theta: 0.0 };
-        let distortion = face_maps
-            .par_iter()
-            .map(|m| m.map_or(zero, |m| Distortion::from_metric(m.jacobian.metric())))
-            .collect();
-        let seam_maps = seam_maps(topology, &positions, |f| face_maps[f as usize].map(|m| m.jacobian));
-        Ok(Self { positions, normals, distortion, seam_maps, face_maps })
+                *map = (chart >= 0).then(|| FaceMap::new(gather(&positions), gather(&normals), *uv)).flatten();
+                *distortion = map.map_or(ZERO_DISTORTION, |m| Distortion::from_metric(m.jacobian.metric()));
+            });
+        let face_maps = &self.face_maps;
+        self.seam_maps = seam_maps(topology, &positions, |f| face_maps[f as usize].map(|m| m.jacobian));
+        self.positions = positions;
+        self.normals = normals;
+        Ok(())
     }
 }
+
+/// Distortion of faces without a usable Jacobian.
+const ZERO_DISTORTION: Distortion = Distortion { sigma1: 0.0, sigma2: 0.0, theta: 0.0 };
 
 #[cfg(test)]
 mod tests {
