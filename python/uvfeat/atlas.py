@@ -213,7 +213,7 @@ class Atlas:
         paper_mode : bool
             The paper's choices where they differ from ours (SPEC §1.10), for reproduction.
         **options
-            ``margin`` (1.25), ``max_jumps`` (8), ``criterion`` ("euclidean" | "geodesic"),
+            ``margin`` (1.25), ``max_jumps`` (32), ``relocation`` ("walk" | "march"), ``criterion`` ("euclidean" | "geodesic"),
             ``gaussian_method`` ("moments" | "geodesic_area"), ``volume_weighting``
             ("distance" | "uniform"), ``rho_min`` (0.1, fraction of r), ``flat_tol`` (1e-3),
             ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct").
@@ -306,7 +306,7 @@ class Atlas:
             raise InvalidParameterError(f"uv {tuple(uv)} is not on a chart; pass chart= explicitly")
         return chart
 
-    def locate(self, start, target, chart: int | None = None, max_jumps: int = 8) -> Location:
+    def locate(self, start, target, chart: int | None = None, max_jumps: int = 32) -> Location:
         """Relocates ``target``, an offset of ``start`` (in ``chart``, default: the chart at
         ``start``), across seams (SPEC §1.5)."""
         status, landed, uv, m, jumps = self._core.locate(tuple(map(float, start)), self._chart_of(start, chart),

@@ -25,7 +25,9 @@ FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature
 #: Options of ``compute`` beyond the named arguments, with the SPEC §1.10 defaults.
 DEFAULT_OPTIONS = {
     "margin": 1.25,
-    "max_jumps": 8,
+    "grow_margin": True,
+    "max_jumps": 32,
+    "relocation": "walk",
     "criterion": "euclidean",
     "gaussian_method": "moments",
     "volume_weighting": "distance",
@@ -39,7 +41,7 @@ DEFAULT_OPTIONS = {
 #: What ``paper_mode=True`` changes (SPEC §1.10). The paper's per-chart pattern repetition,
 #: bilinear texel lookup and chord-sum geodesics are not reproduced yet: uvfeat keeps per-sample
 #: relocation, exact triangle lookup and arc geodesics there, and says so with a warning.
-PAPER_OPTIONS = {"margin": 1.0, "max_jumps": 1, "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
+PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
 
 
 def feature_names(features) -> list[str]:
@@ -135,7 +137,7 @@ class FeatureMap:
 
 def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
     return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), float(opts["tau"]), int(seed),
-                                  float(opts["margin"]), int(opts["max_jumps"]), opts["criterion"],
+                                  float(opts["margin"]), bool(opts["grow_margin"]), int(opts["max_jumps"]), opts["relocation"], opts["criterion"],
                                   opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
                                   float(opts["flat_tol"]), bool(opts["standard_error"]))
 

@@ -1,7 +1,7 @@
 //! Per-frame mesh quantities (SPEC §1.9, animation): everything that depends on positions and is
 //! recomputed for each frame, on top of the reused topology.
 
-use crate::distortion::Distortion;
+use crate::distortion::{corner_metrics, interpolated_metric, Distortion};
 use crate::error::Result;
 use crate::mesh::{seam_maps, vertex_normals, Jacobian, SeamMap, Topology};
 use glam::{DMat2, DVec2, DVec3};
@@ -41,7 +41,10 @@ impl FaceMap {
         let inv = inv.inverse();
         let gradient = |v: [DVec3; 3]| {
             let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
-            (e1 * inv.x_axis.x + e2 * inv.x_axis.y, e1 * inv.y_axis.x + e2 * inv.y_axis.y)
+            (
+                e1 * inv.x_axis.x + e2 * inv.x_axis.y,
+                e1 * inv.y_axis.x + e2 * inv.y_axis.y,
+            )
         };
         let (pu, pv) = gradient(x);
         let (nu, nv) = gradient(n);
@@ -77,10 +80,21 @@ impl FaceMap {
     #[inline]
     pub fn smooth_position(&self, uv: DVec2) -> DVec3 {
         let p = self.position(uv);
-        let b = self.to_barycentric * (uv - self.uv0);
-        let weights = [1.0 - b.x - b.y, b.x, b.y];
-        let lift: DVec3 = self.corners.iter().zip(weights).map(|(&(x, n), w)| n * (w * (x - p).dot(n))).sum();
+        let weights = self.barycentric(uv);
+        let lift: DVec3 = self
+            .corners
+            .iter()
+            .zip(weights)
+            .map(|(&(x, n), w)| n * (w * (x - p).dot(n)))
+            .sum();
         p + 0.5 * lift
+    }
+
+    /// Barycentric coordinates of `uv` (negative outside the face).
+    #[inline]
+    pub fn barycentric(&self, uv: DVec2) -> [f64; 3] {
+        let b = self.to_barycentric * (uv - self.uv0);
+        [1.0 - b.x - b.y, b.x, b.y]
     }
 
     /// Unit normal at `uv` (interpolated vertex normals, renormalised).
@@ -100,6 +114,8 @@ pub struct Frame {
     pub normals: Vec<DVec3>,
     /// (n_faces) distortion of each face (zeros where the Jacobian is missing).
     pub distortion: Vec<Distortion>,
+    /// (n_corners) smoothed metric `[E, F, G]` of each atlas corner (see [`corner_metrics`]).
+    pub corner_metrics: Vec<[f64; 3]>,
     /// (n_sides) transition map of each boundary side; `None` where nothing is across.
     pub seam_maps: Vec<Option<SeamMap>>,
     /// (n_faces) affine position and normal maps; `None` for a degenerate UV triangle.
@@ -117,6 +133,7 @@ impl Frame {
             positions: Vec::new(),
             normals: Vec::new(),
             distortion: vec![ZERO_DISTORTION; n_faces],
+            corner_metrics: Vec::new(),
             seam_maps: Vec::new(),
             face_maps: vec![None; n_faces],
         };
@@ -136,22 +153,68 @@ impl Frame {
         self.face_maps
             .par_iter_mut()
             .zip(self.distortion.par_iter_mut())
-            .zip(topology.faces.par_iter().zip(&topology.corner_uvs).zip(&topology.face_chart))
+            .zip(
+                topology
+                    .faces
+                    .par_iter()
+                    .zip(&topology.corner_uvs)
+                    .zip(&topology.face_chart),
+            )
             .for_each(|((map, distortion), ((tri, uv), &chart))| {
                 let gather = |values: &[DVec3]| tri.map(|v| values[v as usize]);
-                *map = (chart >= 0).then(|| FaceMap::new(gather(&positions), gather(&normals), *uv)).flatten();
-                *distortion = map.map_or(ZERO_DISTORTION, |m| Distortion::from_metric(m.jacobian.metric()));
+                *map = (chart >= 0)
+                    .then(|| FaceMap::new(gather(&positions), gather(&normals), *uv))
+                    .flatten();
+                *distortion = map.map_or(ZERO_DISTORTION, |m| {
+                    Distortion::from_metric(m.jacobian.metric())
+                });
             });
         let face_maps = &self.face_maps;
-        self.seam_maps = seam_maps(topology, &positions, |f| face_maps[f as usize].map(|m| m.jacobian));
+        self.corner_metrics =
+            corner_metrics(topology, |f| face_maps[f].map(|m| m.jacobian.metric()));
+        let metrics = &self.corner_metrics;
+        self.seam_maps = seam_maps(topology, |face, corner| {
+            metrics[topology.corner_groups[face as usize][corner] as usize]
+        });
         self.positions = positions;
         self.normals = normals;
         Ok(())
     }
+
+    /// The sampler's metric at `uv` in `face`: the face's own metric, unless it is far more
+    /// anisotropic than the smoothed field around it (a UV sliver, see [`corner_metrics`]); then
+    /// the smoothed field. Where the two agree the face's metric is kept, so regular
+    /// parameterisations sample exactly as SPEC §1.4 says. Zero for a face without a
+    /// parameterisation.
+    pub fn sampling_distortion(&self, topology: &Topology, face: u32, uv: DVec2) -> Distortion {
+        let Some(map) = &self.face_maps[face as usize] else {
+            return ZERO_DISTORTION;
+        };
+        let own = self.distortion[face as usize];
+        let smooth = Distortion::from_metric(interpolated_metric(
+            topology,
+            &self.corner_metrics,
+            face as usize,
+            map.barycentric(uv),
+        ));
+        let anisotropy = |d: &Distortion| d.sigma1 / d.sigma2.max(1e-300);
+        if anisotropy(&own) > SLIVER_ANISOTROPY * anisotropy(&smooth) {
+            smooth
+        } else {
+            own
+        }
+    }
 }
 
+/// A face whose stretch ratio exceeds the smoothed field's by this factor is a sliver.
+const SLIVER_ANISOTROPY: f64 = 2.0;
+
 /// Distortion of faces without a usable Jacobian.
-const ZERO_DISTORTION: Distortion = Distortion { sigma1: 0.0, sigma2: 0.0, theta: 0.0 };
+const ZERO_DISTORTION: Distortion = Distortion {
+    sigma1: 0.0,
+    sigma2: 0.0,
+    theta: 0.0,
+};
 
 #[cfg(test)]
 mod tests {
@@ -161,7 +224,11 @@ mod tests {
     fn affine_map_is_recovered_exactly() {
         // P(u, v) = (2u + v, 3v, u - v)
         let p = |t: DVec2| DVec3::new(2.0 * t.x + t.y, 3.0 * t.y, t.x - t.y);
-        let uv = [DVec2::new(0.1, 0.2), DVec2::new(0.7, 0.3), DVec2::new(0.2, 0.9)];
+        let uv = [
+            DVec2::new(0.1, 0.2),
+            DVec2::new(0.7, 0.3),
+            DVec2::new(0.2, 0.9),
+        ];
         let map = FaceMap::new(uv.map(p), [DVec3::Z; 3], uv).unwrap();
         assert!((map.jacobian.pu - DVec3::new(2.0, 0.0, 1.0)).length() < 1e-12);
         assert!((map.jacobian.pv - DVec3::new(1.0, 3.0, -1.0)).length() < 1e-12);

@@ -4,7 +4,6 @@
 use crate::atlas::Atlas;
 use glam::{DVec2, DVec3};
 
-
 /// The surface at a parametric point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
@@ -33,7 +32,12 @@ pub fn surface_point(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<SurfacePoin
 #[inline]
 pub fn evaluate_face(atlas: &Atlas, face: u32, uv: DVec2) -> Option<SurfacePoint> {
     let map = atlas.frame.face_maps[face as usize].as_ref()?;
-    Some(SurfacePoint { position: map.smooth_position(uv), normal: map.normal(uv), face, area_element: map.area_element })
+    Some(SurfacePoint {
+        position: map.smooth_position(uv),
+        normal: map.normal(uv),
+        face,
+        area_element: map.area_element,
+    })
 }
 
 fn face_near(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<u32> {

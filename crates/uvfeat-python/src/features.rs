@@ -9,21 +9,29 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use uvfeat_core::features::{Feature, GaussianMethod, VolumeWeighting};
 use uvfeat_core::output::{per_vertex, ComputeSettings, FeatureMaps, VertexQuery};
+use uvfeat_core::relocation::Relocation;
 use uvfeat_core::sampling::{neighbourhood_tile, Criterion};
 use uvfeat_core::UvfeatError;
 
 fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
-    options.iter().find(|(k, _)| *k == value).map(|(_, v)| *v).ok_or_else(|| {
-        let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
-        to_py(UvfeatError::InvalidParameter { name, reason: format!("{value:?} is not one of {valid:?}") })
-    })
+    options
+        .iter()
+        .find(|(k, _)| *k == value)
+        .map(|(_, v)| *v)
+        .ok_or_else(|| {
+            let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
+            to_py(UvfeatError::InvalidParameter {
+                name,
+                reason: format!("{value:?} is not one of {valid:?}"),
+            })
+        })
 }
 
 /// Builds and validates core settings from the Python keyword arguments.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, tau, seed, margin, max_jumps,
-                    criterion, gaussian_method, volume_weighting, rho_min, flat_tol, standard_error))]
+#[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, tau, seed, margin, grow_margin, max_jumps,
+                    relocation, criterion, gaussian_method, volume_weighting, rho_min, flat_tol, standard_error))]
 pub fn compute_settings(
     features: Vec<String>,
     radius: f64,
@@ -33,7 +41,9 @@ pub fn compute_settings(
     tau: f64,
     seed: u64,
     margin: f64,
+    grow_margin: bool,
     max_jumps: u32,
+    relocation: &str,
     criterion: &str,
     gaussian_method: &str,
     volume_weighting: &str,
@@ -41,7 +51,11 @@ pub fn compute_settings(
     flat_tol: f64,
     standard_error: bool,
 ) -> PyResult<PySettings> {
-    let features = features.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)?;
+    let features = features
+        .iter()
+        .map(|f| Feature::from_name(f))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(to_py)?;
     let mut s = ComputeSettings::new(features, radius);
     s.samples = samples;
     s.resolution = compute_resolution;
@@ -49,17 +63,36 @@ pub fn compute_settings(
     s.tau = tau;
     s.seed = seed;
     s.margin = margin;
+    s.grow_margin = grow_margin;
     s.max_jumps = max_jumps;
-    s.criterion = choice("criterion", criterion, &[("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)])?;
+    s.relocation = choice(
+        "relocation",
+        relocation,
+        &[("walk", Relocation::Walk), ("march", Relocation::March)],
+    )?;
+    s.criterion = choice(
+        "criterion",
+        criterion,
+        &[
+            ("euclidean", Criterion::Euclidean),
+            ("geodesic", Criterion::Geodesic),
+        ],
+    )?;
     s.gaussian_method = choice(
         "gaussian_method",
         gaussian_method,
-        &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
+        &[
+            ("moments", GaussianMethod::Moments),
+            ("geodesic_area", GaussianMethod::GeodesicArea),
+        ],
     )?;
     s.volume_weighting = choice(
         "volume_weighting",
         volume_weighting,
-        &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)],
+        &[
+            ("distance", VolumeWeighting::Distance),
+            ("uniform", VolumeWeighting::Uniform),
+        ],
     )?;
     s.rho_min_fraction = rho_min;
     s.flat_tol = flat_tol;
@@ -99,8 +132,16 @@ impl PyFeatureMaps {
     }
 
     /// (W_c, W_c) standard errors of the k-th feature, or None when not requested.
-    fn standard_errors<'py>(&self, py: Python<'py>, k: usize) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
-        self.inner.standard_errors.as_ref().map(|e| self.map(py, e[k].clone())).transpose()
+    fn standard_errors<'py>(
+        &self,
+        py: Python<'py>,
+        k: usize,
+    ) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
+        self.inner
+            .standard_errors
+            .as_ref()
+            .map(|e| self.map(py, e[k].clone()))
+            .transpose()
     }
 
     #[getter]
@@ -143,16 +184,35 @@ impl PyFeatureMaps {
 
     /// Per-vertex values of every feature (list of (n_vertices,) arrays), by texture lookup or
     /// direct evaluation.
-    fn per_vertex<'py>(&self, py: Python<'py>, atlas: &PyAtlas, query: &str) -> PyResult<Vec<Bound<'py, PyArrayDyn<f32>>>> {
-        let query = choice("query", query, &[("texture", VertexQuery::Texture), ("direct", VertexQuery::Direct)])?;
+    fn per_vertex<'py>(
+        &self,
+        py: Python<'py>,
+        atlas: &PyAtlas,
+        query: &str,
+    ) -> PyResult<Vec<Bound<'py, PyArrayDyn<f32>>>> {
+        let query = choice(
+            "query",
+            query,
+            &[
+                ("texture", VertexQuery::Texture),
+                ("direct", VertexQuery::Direct),
+            ],
+        )?;
         let (maps, settings, core) = (&self.inner, &self.settings, atlas.core());
         let values = guarded(py, || Ok(per_vertex(core, maps, settings, query)))?;
-        values.into_iter().map(|v| to_numpy(py, v.clone(), &[v.len()])).collect()
+        values
+            .into_iter()
+            .map(|v| to_numpy(py, v.clone(), &[v.len()]))
+            .collect()
     }
 }
 
 impl PyFeatureMaps {
-    fn map<'py, T: numpy::Element>(&self, py: Python<'py>, data: Vec<T>) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+    fn map<'py, T: numpy::Element>(
+        &self,
+        py: Python<'py>,
+        data: Vec<T>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
         let w = self.inner.resolution;
         to_numpy(py, data, &[w, w])
     }
@@ -160,10 +220,17 @@ impl PyFeatureMaps {
 
 /// Runs a feature computation on an atlas (GIL released, parallel).
 #[pyfunction]
-pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> PyResult<PyFeatureMaps> {
+pub fn compute_maps(
+    py: Python<'_>,
+    atlas: &PyAtlas,
+    settings: &PySettings,
+) -> PyResult<PyFeatureMaps> {
     let (core, s) = (atlas.core(), &settings.inner);
     let inner = guarded(py, || FeatureMaps::compute(core, s))?;
-    Ok(PyFeatureMaps { inner, settings: settings.inner.clone() })
+    Ok(PyFeatureMaps {
+        inner,
+        settings: settings.inner.clone(),
+    })
 }
 
 type TileArrays<'py> = (

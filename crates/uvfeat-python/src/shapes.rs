@@ -6,13 +6,23 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uvfeat_core::shapes;
 
-type ShapeArrays<'py> =
-    (Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArrayDyn<i64>>, Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArrayDyn<i64>>);
+type ShapeArrays<'py> = (
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<i64>>,
+    Bound<'py, PyArrayDyn<f64>>,
+    Bound<'py, PyArrayDyn<i64>>,
+);
 
 /// Builds an analytic mesh by name; returns `(positions, faces, uvs, uv_faces)`.
 #[pyfunction]
 #[pyo3(signature = (name, sizes, counts, mirrored = false))]
-pub fn shape<'py>(py: Python<'py>, name: &str, sizes: Vec<f64>, counts: Vec<usize>, mirrored: bool) -> PyResult<ShapeArrays<'py>> {
+pub fn shape<'py>(
+    py: Python<'py>,
+    name: &str,
+    sizes: Vec<f64>,
+    counts: Vec<usize>,
+    mirrored: bool,
+) -> PyResult<ShapeArrays<'py>> {
     let size = |k: usize| sizes.get(k).copied().unwrap_or(1.0);
     let count = |k: usize| counts.get(k).copied().unwrap_or(32);
     let mesh = match name {

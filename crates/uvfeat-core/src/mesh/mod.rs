@@ -2,7 +2,9 @@
 //! pre-processing (welding, charts, edge classes), plus the per-frame quantities that depend on
 //! positions (vertex normals, triangle metrics, seam transition maps).
 
+mod adjacency;
 mod charts;
+mod corners;
 mod edges;
 mod jacobian;
 mod normals;
@@ -10,6 +12,8 @@ mod topology;
 mod transition;
 mod weld;
 
+pub use adjacency::EdgeLink;
+pub use corners::NO_CORNER;
 pub use edges::{EdgeCounts, SideKind};
 pub use jacobian::Jacobian;
 pub use normals::vertex_normals;
@@ -49,7 +53,10 @@ impl TriangleMesh {
         uv_faces: &[[i64; 3]],
     ) -> Result<Self> {
         if positions.is_empty() || faces.is_empty() {
-            return Err(UvfeatError::EmptyMesh { vertices: positions.len(), faces: faces.len() });
+            return Err(UvfeatError::EmptyMesh {
+                vertices: positions.len(),
+                faces: faces.len(),
+            });
         }
         if uvs.is_empty() {
             return Err(UvfeatError::NoUvs);
@@ -61,14 +68,24 @@ impl TriangleMesh {
                 got: uv_faces.len(),
             });
         }
-        if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        if let Some((index, p)) = positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
+        {
             return Err(UvfeatError::NonFinitePosition { index, value: *p });
         }
-        if let Some((index, uv)) = uvs.iter().enumerate().find(|(_, uv)| !uv.iter().all(|c| c.is_finite())) {
+        if let Some((index, uv)) = uvs
+            .iter()
+            .enumerate()
+            .find(|(_, uv)| !uv.iter().all(|c| c.is_finite()))
+        {
             return Err(UvfeatError::NonFiniteUv { index, value: *uv });
         }
-        if let Some((index, uv)) =
-            uvs.iter().enumerate().find(|(_, uv)| uv.iter().any(|c| !(0.0..=1.0).contains(c)))
+        if let Some((index, uv)) = uvs
+            .iter()
+            .enumerate()
+            .find(|(_, uv)| uv.iter().any(|c| !(0.0..=1.0).contains(c)))
         {
             return Err(UvfeatError::UvOutOfRange { index, value: *uv });
         }
@@ -93,7 +110,12 @@ fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static str) -> Resul
             let mut out = [0u32; 3];
             for (slot, &index) in out.iter_mut().zip(row) {
                 if index < 0 || index as usize >= count {
-                    return Err(UvfeatError::IndexOutOfRange { face, what, index, count });
+                    return Err(UvfeatError::IndexOutOfRange {
+                        face,
+                        what,
+                        index,
+                        count,
+                    });
                 }
                 *slot = index as u32;
             }
@@ -112,5 +134,7 @@ pub(crate) fn uv_signed_area2(uv: &[DVec2; 3]) -> f64 {
 pub(crate) fn uv_is_degenerate(uv: &[DVec2; 3]) -> bool {
     let e1 = uv[1] - uv[0];
     let e2 = uv[2] - uv[0];
-    uv_signed_area2(uv).abs() <= 1e-12 * e1.length() * e2.length() || e1.length() == 0.0 || e2.length() == 0.0
+    uv_signed_area2(uv).abs() <= 1e-12 * e1.length() * e2.length()
+        || e1.length() == 0.0
+        || e2.length() == 0.0
 }

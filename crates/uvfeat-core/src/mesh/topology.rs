@@ -1,7 +1,9 @@
 //! The once-per-topology pre-processing (SPEC §1.2): everything here depends on connectivity and
 //! UVs only, so every animation frame reuses it.
 
+use super::adjacency::{face_links, EdgeLink};
 use super::charts::chart_ids;
+use super::corners::corner_groups;
 use super::edges::{classify_edges, EdgeCounts, FaceSide, SideKind};
 use super::weld::weld_positions;
 use super::{uv_is_degenerate, uv_signed_area2, TriangleMesh};
@@ -59,6 +61,12 @@ pub struct Topology {
     pub n_charts: usize,
     /// Every chart-boundary side.
     pub sides: Vec<BoundarySide>,
+    /// (n_faces) what lies across each edge of each face (for the exact triangle walk).
+    pub links: Vec<[EdgeLink; 3]>,
+    /// (n_faces) atlas corner of each face corner (`NO_CORNER` for faces without a chart).
+    pub corner_groups: Vec<[u32; 3]>,
+    /// Number of atlas corners.
+    pub n_corners: usize,
     /// Counts for reports.
     pub diagnostics: TopologyDiagnostics,
 }
@@ -78,7 +86,11 @@ impl Topology {
                 representative[g as usize] = v as u32;
             }
         }
-        let faces: Vec<[u32; 3]> = mesh.faces.iter().map(|t| t.map(|v| vertex_ids[v as usize])).collect();
+        let faces: Vec<[u32; 3]> = mesh
+            .faces
+            .iter()
+            .map(|t| t.map(|v| vertex_ids[v as usize]))
+            .collect();
         let corner_uvs: Vec<[DVec2; 3]> = (0..faces.len()).map(|f| mesh.corner_uvs(f)).collect();
         // A face whose corners weld together is degenerate in 3D and in the edge graph alike.
         let excluded: Vec<bool> = faces
@@ -93,6 +105,8 @@ impl Topology {
         let classes = classify_edges(&faces, &corner_uvs, &excluded);
         let (face_chart, n_charts) = chart_ids(faces.len(), &classes.interior_pairs, &excluded);
         let sides = boundary_sides(&classes.boundary, &face_chart);
+        let links = face_links(&faces, &face_chart, &sides);
+        let (corner_groups, n_corners) = corner_groups(&faces, &corner_uvs, &face_chart);
         let mirrored_uv_faces = corner_uvs
             .iter()
             .zip(&excluded)
@@ -105,7 +119,19 @@ impl Topology {
             mirrored_uv_faces,
             edges: classes.counts,
         };
-        Ok(Self { vertex_ids, representative, faces, corner_uvs, face_chart, n_charts, sides, diagnostics })
+        Ok(Self {
+            vertex_ids,
+            representative,
+            faces,
+            corner_uvs,
+            face_chart,
+            n_charts,
+            sides,
+            links,
+            corner_groups,
+            n_corners,
+            diagnostics,
+        })
     }
 
     /// Number of geometric (welded) vertices.
@@ -120,12 +146,22 @@ impl Topology {
     /// [`UvfeatError::NonFinitePosition`] for NaN or Inf.
     pub fn geometric_positions(&self, positions: &[DVec3]) -> Result<Vec<DVec3>> {
         if positions.len() != self.vertex_ids.len() {
-            return Err(UvfeatError::FrameVertexCount { expected: self.vertex_ids.len(), got: positions.len() });
+            return Err(UvfeatError::FrameVertexCount {
+                expected: self.vertex_ids.len(),
+                got: positions.len(),
+            });
         }
         if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-            return Err(UvfeatError::NonFinitePosition { index, value: p.to_array() });
+            return Err(UvfeatError::NonFinitePosition {
+                index,
+                value: p.to_array(),
+            });
         }
-        Ok(self.representative.iter().map(|&v| positions[v as usize]).collect())
+        Ok(self
+            .representative
+            .iter()
+            .map(|&v| positions[v as usize])
+            .collect())
     }
 
     /// The two geometric vertex ids and corner UVs of a boundary side, in the side's order.
@@ -138,15 +174,22 @@ impl Topology {
 }
 
 fn boundary_sides(boundary: &[(FaceSide, SideKind)], face_chart: &[i32]) -> Vec<BoundarySide> {
-    let index: HashMap<(u32, u8), usize> =
-        boundary.iter().enumerate().map(|(i, (s, _))| ((s.face, s.local), i)).collect();
+    let index: HashMap<(u32, u8), usize> = boundary
+        .iter()
+        .enumerate()
+        .map(|(i, (s, _))| ((s.face, s.local), i))
+        .collect();
     boundary
         .iter()
         .map(|&(side, kind)| {
             let (reverse, adjacent_chart) = match kind {
-                SideKind::Seam { other_face, other_local } => {
-                    (index[&(other_face, other_local)] as i32, face_chart[other_face as usize])
-                }
+                SideKind::Seam {
+                    other_face,
+                    other_local,
+                } => (
+                    index[&(other_face, other_local)] as i32,
+                    face_chart[other_face as usize],
+                ),
                 _ => (-1, -1),
             };
             BoundarySide {

@@ -4,7 +4,9 @@
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::features::{estimate, relative_standard_error, NeighbourhoodStats};
-use crate::sampling::{centre_at, disk_pattern, ellipse_area, gather, Sample, SampleCounts, TURNS};
+use crate::sampling::{
+    centre_at, disk_pattern, gather, gather_covering, Sample, SampleCounts, TURNS,
+};
 use glam::DVec2;
 
 /// Interleaved batches behind the standard errors.
@@ -24,9 +26,15 @@ impl Patterns {
     pub fn new(settings: &ComputeSettings) -> Self {
         let n = settings.samples;
         if settings.adaptive {
-            Self { first: disk_pattern(n / 2, settings.seed, 1), second: disk_pattern(n - n / 2, settings.seed, 2) }
+            Self {
+                first: disk_pattern(n / 2, settings.seed, 1),
+                second: disk_pattern(n - n / 2, settings.seed, 2),
+            }
         } else {
-            Self { first: disk_pattern(n, settings.seed, 0), second: Vec::new() }
+            Self {
+                first: disk_pattern(n, settings.seed, 0),
+                second: Vec::new(),
+            }
         }
     }
 }
@@ -51,7 +59,11 @@ impl PixelResult {
     pub const EMPTY: PixelResult = PixelResult {
         values: [f32::NAN; 9],
         errors: [f32::NAN; 9],
-        counts: SampleCounts { valid: 0, missing: 0, border: 0 },
+        counts: SampleCounts {
+            valid: 0,
+            missing: 0,
+            border: 0,
+        },
         second_stage: false,
         clamped: false,
     };
@@ -67,14 +79,22 @@ pub fn evaluate_point(
     patterns: &Patterns,
     scratch: &mut Vec<Sample>,
 ) -> PixelResult {
-    let Some(centre) = centre_at(atlas, uv) else { return PixelResult::EMPTY };
-    let sampler = settings.sampler();
+    let Some(centre) = centre_at(atlas, uv) else {
+        return PixelResult::EMPTY;
+    };
+    let mut sampler = settings.sampler();
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
-    let area = ellipse_area(&centre, &sampler);
-    scratch.clear();
     let first = patterns.first.len();
-    let mut counts = gather(atlas, &centre, &patterns.first, psi, area / first as f64, &sampler, scratch);
+    let (mut counts, area) = gather_covering(
+        atlas,
+        &centre,
+        &patterns.first,
+        psi,
+        &mut sampler,
+        settings.grow_margin,
+        scratch,
+    );
     let mut stats = NeighbourhoodStats::default();
     stats.accumulate(scratch, centre.normal, &stats_settings);
     let mut second_stage = false;
@@ -88,7 +108,15 @@ pub fn evaluate_point(
             let second = patterns.second.len();
             let total = (first + second) as f64;
             let start = scratch.len();
-            counts.add(gather(atlas, &centre, &patterns.second, psi, area / second as f64, &sampler, scratch));
+            counts.add(gather(
+                atlas,
+                &centre,
+                &patterns.second,
+                psi,
+                area / second as f64,
+                &sampler,
+                scratch,
+            ));
             // Each stage's samples stood for A_uv / N_stage; pooled they stand for A_uv / N.
             stats.scale_areas(first as f64 / total);
             let mut more = NeighbourhoodStats::default();
@@ -106,7 +134,8 @@ pub fn evaluate_point(
         clamped: estimates.clamped,
     };
     if settings.standard_errors {
-        result.errors = batch_standard_errors(scratch, &centre.normal, settings, second_stage, first);
+        result.errors =
+            batch_standard_errors(scratch, &centre.normal, settings, second_stage, first);
     }
     result
 }
@@ -129,7 +158,11 @@ fn batch_standard_errors(
         batches[group % BATCHES].accumulate(std::slice::from_ref(sample), *normal, &stats_settings);
     }
     // Each batch holds about 1/BATCHES of the samples, so its absolute areas are scaled back up.
-    let pooled_scale = if pooled { first as f64 / settings.samples as f64 } else { 1.0 };
+    let pooled_scale = if pooled {
+        first as f64 / settings.samples as f64
+    } else {
+        1.0
+    };
     let values: Vec<[f64; 9]> = batches
         .iter_mut()
         .map(|b| {
@@ -138,7 +171,11 @@ fn batch_standard_errors(
         })
         .collect();
     std::array::from_fn(|f| {
-        let finite: Vec<f64> = values.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
+        let finite: Vec<f64> = values
+            .iter()
+            .map(|v| v[f])
+            .filter(|x| x.is_finite())
+            .collect();
         let n = finite.len() as f64;
         if n < 2.0 {
             return f32::NAN;

@@ -3,6 +3,7 @@
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
 use crate::features::{EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
+use crate::relocation::Relocation;
 use crate::sampling::{Criterion, SamplerSettings};
 
 /// A feature computation request.
@@ -18,8 +19,13 @@ pub struct ComputeSettings {
     pub resolution: usize,
     /// Ellipse coverage margin `m` (1.25).
     pub margin: f64,
-    /// Seams a sample may cross (8; SPEC 3, paper 1: fragmented atlases need more).
+    /// Sample again with a larger margin where the ellipse did not cover the ball (on).
+    pub grow_margin: bool,
+    /// Seams a sample may cross (32; SPEC 3, paper 1: fragmented atlases need more, and the exact
+    /// walk makes a crossing cheap).
     pub max_jumps: u32,
+    /// How samples that leave their chart are relocated (exact walk).
+    pub relocation: Relocation,
     /// Neighbourhood criterion (Euclidean).
     pub criterion: Criterion,
     /// Seed of the pattern and the per-pixel rotations (0).
@@ -49,7 +55,9 @@ impl ComputeSettings {
             samples: 256,
             resolution: 512,
             margin: 1.25,
-            max_jumps: 8,
+            grow_margin: true,
+            max_jumps: 32,
+            relocation: Relocation::Walk,
             criterion: Criterion::Euclidean,
             seed: 0,
             adaptive: false,
@@ -67,27 +75,47 @@ impl ComputeSettings {
     /// # Errors
     /// [`UvfeatError::InvalidParameter`] naming the parameter and the valid range.
     pub fn validate(&self) -> Result<()> {
-        let invalid = |name: &'static str, reason: String| Err(UvfeatError::InvalidParameter { name, reason });
+        let invalid = |name: &'static str, reason: String| {
+            Err(UvfeatError::InvalidParameter { name, reason })
+        };
         if self.features.is_empty() {
             return invalid("features", "ask for at least one feature".into());
         }
         if !(self.radius.is_finite() && self.radius > 0.0) {
-            return invalid("radius", format!("must be a positive, finite length, got {}", self.radius));
+            return invalid(
+                "radius",
+                format!("must be a positive, finite length, got {}", self.radius),
+            );
         }
         if self.samples < 4 || self.samples > 65_536 {
-            return invalid("samples", format!("must be between 4 and 65536, got {}", self.samples));
+            return invalid(
+                "samples",
+                format!("must be between 4 and 65536, got {}", self.samples),
+            );
         }
         if self.resolution == 0 || self.resolution > MAX_RESOLUTION {
-            return invalid("compute_resolution", format!("must be in 1..={MAX_RESOLUTION}, got {}", self.resolution));
+            return invalid(
+                "compute_resolution",
+                format!("must be in 1..={MAX_RESOLUTION}, got {}", self.resolution),
+            );
         }
         if !(self.margin.is_finite() && self.margin >= 1.0 && self.margin <= 4.0) {
             return invalid("margin", format!("must be in [1, 4], got {}", self.margin));
         }
         if !(self.tau >= 0.0) {
-            return invalid("tau", format!("must be >= 0 (inf = stage 1 only), got {}", self.tau));
+            return invalid(
+                "tau",
+                format!("must be >= 0 (inf = stage 1 only), got {}", self.tau),
+            );
         }
         if !(0.0..1.0).contains(&self.rho_min_fraction) {
-            return invalid("rho_min", format!("must be a fraction of r in [0, 1), got {}", self.rho_min_fraction));
+            return invalid(
+                "rho_min",
+                format!(
+                    "must be a fraction of r in [0, 1), got {}",
+                    self.rho_min_fraction
+                ),
+            );
         }
         if !(self.flat_tol >= 0.0) {
             return invalid("flat_tol", format!("must be >= 0, got {}", self.flat_tol));
@@ -97,7 +125,13 @@ impl ComputeSettings {
 
     /// Sampler part of the settings.
     pub fn sampler(&self) -> SamplerSettings {
-        SamplerSettings { radius: self.radius, margin: self.margin, max_jumps: self.max_jumps, criterion: self.criterion }
+        SamplerSettings {
+            radius: self.radius,
+            margin: self.margin,
+            max_jumps: self.max_jumps,
+            relocation: self.relocation,
+            criterion: self.criterion,
+        }
     }
 
     /// Statistics part of the settings.

@@ -42,7 +42,12 @@ pub struct GeometryBuffers {
 
 impl GeometryBuffers {
     /// Evaluates the buffers of one frame; parallel over rows.
-    pub fn evaluate(topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) -> Self {
+    pub fn evaluate(
+        topology: &Topology,
+        coverage: &Coverage,
+        frame: &Frame,
+        precision: Precision,
+    ) -> Self {
         let n = coverage.face.len();
         let mut buffers = Self {
             position: vec![[f32::NAN; 3]; n],
@@ -56,7 +61,13 @@ impl GeometryBuffers {
 
     /// Overwrites the covered texels for a new frame of the same coverage (empty texels keep
     /// their NaN), so animation frames allocate nothing.
-    pub fn refresh(&mut self, topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) {
+    pub fn refresh(
+        &mut self,
+        topology: &Topology,
+        coverage: &Coverage,
+        frame: &Frame,
+        precision: Precision,
+    ) {
         let row = coverage.resolution;
         self.position
             .par_chunks_mut(row)
@@ -67,7 +78,9 @@ impl GeometryBuffers {
             .for_each(|(j, (((position, normal), sigma), theta))| {
                 for i in 0..row {
                     let t = j * row + i;
-                    let Ok(face) = usize::try_from(coverage.face[t]) else { continue };
+                    let Ok(face) = usize::try_from(coverage.face[t]) else {
+                        continue;
+                    };
                     let [b1, b2] = coverage.bary[t].map(f64::from);
                     let weights = [1.0 - b1 - b2, b1, b2];
                     let tri = topology.faces[face];

@@ -5,6 +5,6 @@ mod buffers;
 mod coverage;
 mod triangles;
 
+pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
 pub use coverage::{Coverage, CoverageDiagnostics};
-pub(crate) use boundary::closest_on_segment;

@@ -4,9 +4,9 @@
 
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
-use crate::lookup::surface_point;
+use crate::lookup::{evaluate_face, surface_point};
 use crate::raster::Precision;
-use crate::relocation::{locate, Located};
+use crate::relocation::{home, locate_with, Home, Located, Relocation};
 use glam::{DMat2, DVec2, DVec3};
 use half::f16;
 
@@ -27,8 +27,10 @@ pub struct SamplerSettings {
     pub radius: f64,
     /// Ellipse coverage margin `m` (SPEC §3.2; 1.25 default, 1 = paper).
     pub margin: f64,
-    /// Seams a sample may cross (SPEC §1.5; 3 default, 1 = paper).
+    /// Seams a sample may cross (SPEC §1.5; 8 default, 1 = paper).
     pub max_jumps: u32,
+    /// How samples that leave the chart are relocated.
+    pub relocation: Relocation,
     /// Neighbourhood criterion.
     pub criterion: Criterion,
 }
@@ -44,8 +46,10 @@ pub struct Centre {
     pub position: DVec3,
     /// Unit normal at `p`.
     pub normal: DVec3,
-    /// Metric of the face at `s`.
+    /// The sampler's metric at `s` (see [`crate::frame::Frame::sampling_distortion`]).
     pub distortion: Distortion,
+    /// The face containing `s`, where walks to the samples start.
+    pub home: Home,
 }
 
 /// One accepted sample `q_i` of a neighbourhood.
@@ -95,8 +99,11 @@ fn rounded(v: DVec3, precision: Precision) -> DVec3 {
 /// The centre at parametric location `uv`; `None` off the charts or on a face degenerate in 3D.
 pub fn centre_at(atlas: &Atlas, uv: DVec2) -> Option<Centre> {
     let chart = atlas.chart_at(uv);
-    let point = surface_point(atlas, uv, chart)?;
-    let distortion = atlas.frame.distortion[point.face as usize];
+    let home = home(atlas, uv, chart)?;
+    let point = evaluate_face(atlas, home.face, home.point)?;
+    let distortion = atlas
+        .frame
+        .sampling_distortion(&atlas.topology, home.face, home.point);
     if !(distortion.sigma2 > 1e-12 * distortion.sigma1) {
         return None;
     }
@@ -106,6 +113,7 @@ pub fn centre_at(atlas: &Atlas, uv: DVec2) -> Option<Centre> {
         position: rounded(point.position, atlas.precision),
         normal: rounded(point.normal, atlas.precision),
         distortion,
+        home,
     })
 }
 
@@ -147,8 +155,23 @@ pub fn gather(
     let mut counts = SampleCounts::default();
     for (pattern_index, &disk) in pattern.iter().enumerate() {
         let target = centre.uv + ellipse * disk;
-        let (chart, uv, m_path) = match locate(atlas, centre.uv, centre.chart, target, settings.max_jumps) {
-            Located::Inside { chart, uv, m_path, .. } => (chart, uv, m_path),
+        let located = locate_with(
+            atlas,
+            settings.relocation,
+            centre.uv,
+            Some(&centre.home),
+            centre.chart,
+            target,
+            settings.max_jumps,
+        );
+        let (chart, uv, m_path, face) = match located {
+            Located::Inside {
+                chart,
+                uv,
+                m_path,
+                face,
+                ..
+            } => (chart, uv, m_path, face),
             Located::Border => {
                 counts.border += 1;
                 continue;
@@ -158,7 +181,11 @@ pub fn gather(
                 continue;
             }
         };
-        let Some(point) = surface_point(atlas, uv, chart) else {
+        let point = match face {
+            Some(face) => evaluate_face(atlas, face, uv),
+            None => surface_point(atlas, uv, chart),
+        };
+        let Some(point) = point else {
             counts.missing += 1;
             continue;
         };

@@ -1,7 +1,8 @@
 //! The weighted neighbourhood samples of many texels at once, as flat arrays, for user-defined
 //! operators `F(p, S(p))` (SPEC §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
-use super::neighbourhood::{centre_at, ellipse_area, gather, Sample};
+use super::coverage::gather_covering;
+use super::neighbourhood::{centre_at, Sample};
 use super::pattern::{disk_pattern, pixel_angle};
 use crate::atlas::Atlas;
 use crate::output::ComputeSettings;
@@ -30,7 +31,11 @@ pub struct NeighbourhoodTile {
 }
 
 /// Gathers the neighbourhoods of the texels with index in `texels` (of the `W_c`² texture).
-pub fn neighbourhood_tile(atlas: &Atlas, settings: &ComputeSettings, texels: std::ops::Range<usize>) -> NeighbourhoodTile {
+pub fn neighbourhood_tile(
+    atlas: &Atlas,
+    settings: &ComputeSettings,
+    texels: std::ops::Range<usize>,
+) -> NeighbourhoodTile {
     let w = settings.resolution;
     let n = settings.samples;
     let pattern = disk_pattern(n, settings.seed, 0);
@@ -42,10 +47,23 @@ pub fn neighbourhood_tile(atlas: &Atlas, settings: &ComputeSettings, texels: std
             let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
             let centre = centre_at(atlas, uv)?;
             let mut samples = Vec::with_capacity(n);
-            let area = ellipse_area(&centre, &sampler) / n as f64;
             let psi = pixel_angle(i as u32, j as u32, settings.seed);
-            gather(atlas, &centre, &pattern, psi, area, &sampler, &mut samples);
-            Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
+            let mut sampler = sampler;
+            gather_covering(
+                atlas,
+                &centre,
+                &pattern,
+                psi,
+                &mut sampler,
+                settings.grow_margin,
+                &mut samples,
+            );
+            Some((
+                t as u32,
+                centre.position.to_array(),
+                centre.normal.to_array(),
+                samples,
+            ))
         })
         .collect();
     let count = per_texel.len();

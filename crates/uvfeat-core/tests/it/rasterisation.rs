@@ -8,7 +8,9 @@ use uvfeat_core::Atlas;
 fn max_position_error(atlas: &Atlas) -> f64 {
     let mut worst = 0.0f64;
     for (t, &face) in atlas.coverage.face.iter().enumerate() {
-        let Ok(face) = usize::try_from(face) else { continue };
+        let Ok(face) = usize::try_from(face) else {
+            continue;
+        };
         let b = barycentric(atlas.topology.corner_uvs[face], atlas.texel_centre(t));
         if b.iter().any(|&x| x < 0.0) {
             continue; // gutter texel: shows the closest edge point, checked in the seam tests
@@ -22,7 +24,10 @@ fn max_position_error(atlas: &Atlas) -> f64 {
 
 #[test]
 fn positions_are_the_exact_interpolation_at_texel_centres() {
-    for (name, shape) in [("sphere", uv_sphere(1.0, 64, 32)), ("torus", torus(2.0, 0.5, 64, 32))] {
+    for (name, shape) in [
+        ("sphere", uv_sphere(1.0, 64, 32)),
+        ("torus", torus(2.0, 0.5, 64, 32)),
+    ] {
         let atlas = atlas(&shape, 512);
         let err = max_position_error(&atlas);
         assert!(err < 2e-6, "{name}: max |P - exact| = {err}");
@@ -40,7 +45,10 @@ fn every_texel_centre_inside_a_uv_triangle_is_covered_by_its_chart() {
             let b = barycentric(*uv, atlas.texel_centre(t));
             if b.iter().all(|&x| x > 1e-9) {
                 inside += 1;
-                assert_eq!(atlas.coverage.chart[t], atlas.topology.face_chart[face], "texel {t} of face {face}");
+                assert_eq!(
+                    atlas.coverage.chart[t], atlas.topology.face_chart[face],
+                    "texel {t} of face {face}"
+                );
                 assert!(atlas.coverage.face[t] >= 0);
             }
         }
@@ -64,7 +72,12 @@ fn regions_per_chart(atlas: &Atlas) -> Vec<usize> {
         seen[start] = true;
         while let Some(t) = stack.pop() {
             let (i, j) = (t % r, t / r);
-            let neighbours = [(i.wrapping_sub(1), j), (i + 1, j), (i, j.wrapping_sub(1)), (i, j + 1)];
+            let neighbours = [
+                (i.wrapping_sub(1), j),
+                (i + 1, j),
+                (i, j.wrapping_sub(1)),
+                (i, j + 1),
+            ];
             for (ni, nj) in neighbours {
                 if ni < r && nj < r {
                     let n = nj * r + ni;
@@ -82,10 +95,18 @@ fn regions_per_chart(atlas: &Atlas) -> Vec<usize> {
 #[test]
 fn each_chart_is_one_connected_texel_region() {
     for resolution in [512, 1024] {
-        for shape in [uv_sphere(1.0, 48, 24), torus(2.0, 0.5, 48, 24), split_plane(16, true), split_plane(16, false)] {
+        for shape in [
+            uv_sphere(1.0, 48, 24),
+            torus(2.0, 0.5, 48, 24),
+            split_plane(16, true),
+            split_plane(16, false),
+        ] {
             let atlas = atlas(&shape, resolution);
             let regions = regions_per_chart(&atlas);
-            assert!(regions.iter().all(|&n| n == 1), "regions per chart at {resolution}: {regions:?}");
+            assert!(
+                regions.iter().all(|&n| n == 1),
+                "regions per chart at {resolution}: {regions:?}"
+            );
         }
     }
 }

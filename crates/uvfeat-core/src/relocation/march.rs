@@ -1,49 +1,53 @@
-//! Relocation of parametric points that leave their chart (SPEC §1.5, paper §3.4, decisions
-//! A6–A8): march from the centre towards the sample, and where the march leaves the chart, carry
-//! the rest of the offset across the seam with the border texel's transition map.
+//! The texel march of SPEC §1.5 (paper §3.4, decisions A6–A8): march from the centre towards the
+//! sample, and where the march leaves the chart, carry the rest of the offset across the seam with
+//! the border texel's transition map.
 
+use super::Located;
 use crate::atlas::Atlas;
 use crate::raster::closest_on_segment;
 use glam::{DMat2, DVec2};
-
-/// Where a parametric point ends up.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Located {
-    /// The point lies in `chart` at `uv`; `m_path` is the product of the crossed seams' linear
-    /// maps (identity when none was crossed), so `|det m_path|` rescales parametric areas.
-    #[allow(missing_docs)]
-    Inside { chart: i32, uv: DVec2, m_path: DMat2, jumps: u32 },
-    /// The march reached the mesh border: the point is off the surface.
-    Border,
-    /// No border texel was found, or more than `max_jumps` seams were needed.
-    Missing,
-}
 
 /// Locates `target`, an offset of `start` in chart `chart` (SPEC §1.5 `locate`).
 ///
 /// After a crossing, the march continues from the image of the crossing point (the closest point
 /// of the seam edge, which the transition map carries exactly onto the other side) rather than
 /// from the image of the last texel inside, which can fall just outside the new chart.
-pub fn locate(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: u32) -> Located {
+pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: u32) -> Located {
     let resolution = atlas.resolution() as f64;
     let (mut origin, mut target, mut chart) = (start, target, chart);
     let mut m_path = DMat2::IDENTITY;
     let mut jumps = 0;
     loop {
         if atlas.chart_at(target) == chart {
-            return Located::Inside { chart, uv: target, m_path, jumps };
+            return Located::Inside {
+                chart,
+                uv: target,
+                m_path,
+                jumps,
+                face: None,
+            };
         }
         let offset = target - origin;
         let steps = (offset.abs().max_element() * resolution).ceil().max(1.0);
         let step = offset / steps;
         let Some(exit) = first_exit(atlas, origin, step, steps as usize, chart) else {
-            return Located::Inside { chart, uv: target, m_path, jumps };
+            return Located::Inside {
+                chart,
+                uv: target,
+                m_path,
+                jumps,
+                face: None,
+            };
         };
         let last_inside = origin + step * (exit - 1) as f64;
-        let Some(texel) = border_texel(atlas, last_inside, chart) else { return Located::Missing };
+        let Some(texel) = border_texel(atlas, last_inside, chart) else {
+            return Located::Missing;
+        };
         let side_index = atlas.coverage.border_side[texel] as usize;
         let side = &atlas.topology.sides[side_index];
-        let Some(map) = atlas.frame.seam_maps[side_index] else { return Located::Border };
+        let Some(map) = atlas.frame.seam_maps[side_index] else {
+            return Located::Border;
+        };
         if jumps == max_jumps {
             return Located::Missing;
         }
@@ -59,12 +63,20 @@ pub fn locate(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps:
 
 /// First `k` in `1..=steps` with `origin + k step` outside `chart` (SPEC §1.5 march), skipping
 /// ahead by the chart distance of the current texel: the points skipped are provably inside.
-fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
+fn first_exit(
+    atlas: &Atlas,
+    origin: DVec2,
+    step: DVec2,
+    steps: usize,
+    chart: i32,
+) -> Option<usize> {
     let coverage = &atlas.coverage;
     let mut k = 0;
     loop {
         let here = atlas.texel_at(origin + step * k as f64);
-        let skip = here.filter(|&t| coverage.chart[t] == chart).map_or(1, |t| coverage.chart_distance[t].max(2) - 1);
+        let skip = here
+            .filter(|&t| coverage.chart[t] == chart)
+            .map_or(1, |t| coverage.chart_distance[t].max(2) - 1);
         k += usize::from(skip);
         if k > steps {
             return None;
@@ -78,7 +90,9 @@ fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i3
 /// The border texel of `chart` at `uv`, else the one of its 3x3 neighbourhood closest to `uv`.
 pub fn border_texel(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<usize> {
     let coverage = &atlas.coverage;
-    atlas.nearest_texel(uv, |t| coverage.chart[t] == chart && coverage.border_side[t] >= 0)
+    atlas.nearest_texel(uv, |t| {
+        coverage.chart[t] == chart && coverage.border_side[t] >= 0
+    })
 }
 
 /// A parametric point carried across a seam.
@@ -100,5 +114,10 @@ pub fn cross_seam(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Crossing> {
     let texel = border_texel(atlas, uv, chart)?;
     let side = atlas.coverage.border_side[texel] as usize;
     let map = atlas.frame.seam_maps[side]?;
-    Some(Crossing { chart: atlas.topology.sides[side].adjacent_chart, uv: map.apply(uv), m: map.m, side })
+    Some(Crossing {
+        chart: atlas.topology.sides[side].adjacent_chart,
+        uv: map.apply(uv),
+        m: map.m,
+        side,
+    })
 }

@@ -1,0 +1,42 @@
+//! Atlas corners: the face corners that are one point of the atlas (same geometric vertex, same
+//! UV, hence same chart). Per-corner averages of per-face quantities live on these groups.
+
+use glam::DVec2;
+use rayon::prelude::*;
+
+/// Group id of a corner of a face without a chart.
+pub const NO_CORNER: u32 = u32::MAX;
+
+/// Groups the corners of the charted faces: `(group of each face corner, number of groups)`.
+pub(crate) fn corner_groups(
+    faces: &[[u32; 3]],
+    corner_uvs: &[[DVec2; 3]],
+    face_chart: &[i32],
+) -> (Vec<[u32; 3]>, usize) {
+    let mut corners: Vec<(u32, u64, u64, u32)> = faces
+        .par_iter()
+        .zip(corner_uvs)
+        .enumerate()
+        .filter(|&(f, _)| face_chart[f] >= 0)
+        .flat_map_iter(|(f, (tri, uv))| {
+            (0..3).map(move |k| {
+                (
+                    tri[k],
+                    uv[k].x.to_bits(),
+                    uv[k].y.to_bits(),
+                    (f * 3 + k) as u32,
+                )
+            })
+        })
+        .collect();
+    corners.par_sort_unstable();
+    let mut groups = vec![[NO_CORNER; 3]; faces.len()];
+    let mut n_groups = 0;
+    for group in corners.chunk_by(|x, y| (x.0, x.1, x.2) == (y.0, y.1, y.2)) {
+        for &(_, _, _, corner) in group {
+            groups[corner as usize / 3][corner as usize % 3] = n_groups as u32;
+        }
+        n_groups += 1;
+    }
+    (groups, n_groups)
+}

@@ -1,0 +1,142 @@
+//! The exact triangle walk: follows the straight parametric segment from a point to a target face
+//! by face through the UV triangulation, and where it crosses a seam, carries the rest of the
+//! segment across with that seam's transition map. Unlike the texel march it needs no border texel,
+//! so charts narrower than a texel and corners where several seams meet are crossed exactly, and it
+//! ends in the face that contains the point, so the lookup never extrapolates into a gutter.
+
+use super::Located;
+use crate::atlas::Atlas;
+use crate::mesh::{EdgeLink, Topology};
+use glam::{DMat2, DVec2};
+
+/// Faces one walk may cross inside a chart before it is given up as lost (a guard against
+/// numerical cycles; real walks cross `r / edge length` faces).
+const MAX_FACES: usize = 1 << 16;
+
+/// A point inside a face, from which walks start.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Home {
+    /// The face containing `point`.
+    pub face: u32,
+    /// A point of the face's parametric triangle (boundary included).
+    pub point: DVec2,
+}
+
+/// Where a walk inside one chart stopped.
+enum Stop {
+    /// The target lies in `face`.
+    Arrived { face: u32 },
+    /// The segment left the chart through `side` at `point`.
+    Boundary { side: u32, point: DVec2 },
+    /// The guard ran out or a face was unusable.
+    Lost,
+}
+
+/// Signed edge functions of `uv` for the three edges of a parametric triangle, positive inside
+/// (whatever the triangle's orientation).
+#[inline]
+fn edge_functions(corners: &[DVec2; 3], uv: DVec2) -> [f64; 3] {
+    let orientation = (corners[1] - corners[0])
+        .perp_dot(corners[2] - corners[0])
+        .signum();
+    std::array::from_fn(|k| {
+        let (a, b) = (corners[k], corners[(k + 1) % 3]);
+        (b - a).perp_dot(uv - a) * orientation
+    })
+}
+
+/// Walks from `from` (in `face`, entered through edge `entry`) towards `target` inside one chart.
+fn walk_in_chart(
+    topology: &Topology,
+    mut face: u32,
+    mut entry: Option<u8>,
+    mut from: DVec2,
+    target: DVec2,
+) -> Stop {
+    for _ in 0..MAX_FACES {
+        let corners = &topology.corner_uvs[face as usize];
+        let at_target = edge_functions(corners, target);
+        let at_from = edge_functions(corners, from);
+        let mut exit: Option<(usize, f64)> = None;
+        for k in 0..3 {
+            if Some(k as u8) == entry || at_target[k] >= 0.0 {
+                continue;
+            }
+            let inside = at_from[k].max(0.0);
+            let t = inside / (inside - at_target[k]);
+            if exit.is_none_or(|(_, best)| t < best) {
+                exit = Some((k, t));
+            }
+        }
+        let Some((k, t)) = exit else {
+            return Stop::Arrived { face };
+        };
+        from += (target - from) * t;
+        match topology.links[face as usize][k] {
+            EdgeLink::Face { face: next, local } => {
+                face = next;
+                entry = Some(local);
+            }
+            EdgeLink::Side(side) => return Stop::Boundary { side, point: from },
+            EdgeLink::Closed => return Stop::Lost,
+        }
+    }
+    Stop::Lost
+}
+
+/// The face of `chart` containing `uv`: found from the face of its texel by a short walk, which
+/// stops at the chart boundary (then `point` is the boundary point closest along the way).
+pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
+    let coverage = &atlas.coverage;
+    let texel = atlas.nearest_texel(uv, |t| coverage.chart[t] == chart)?;
+    let face = u32::try_from(coverage.face[texel]).ok()?;
+    let topology = &atlas.topology;
+    let corners = topology.corner_uvs[face as usize];
+    let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+    match walk_in_chart(topology, face, None, centroid, uv) {
+        Stop::Arrived { face } => Some(Home { face, point: uv }),
+        Stop::Boundary { side, point } => Some(Home {
+            face: topology.sides[side as usize].face,
+            point,
+        }),
+        Stop::Lost => None,
+    }
+}
+
+/// Locates `target` by walking from `home`, crossing at most `max_jumps` seams.
+pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Located {
+    let topology = &atlas.topology;
+    let (mut face, mut entry, mut from, mut target) = (home.face, None, home.point, target);
+    let mut m_path = DMat2::IDENTITY;
+    let mut jumps = 0;
+    loop {
+        match walk_in_chart(topology, face, entry, from, target) {
+            Stop::Arrived { face } => {
+                let chart = topology.face_chart[face as usize];
+                return Located::Inside {
+                    chart,
+                    uv: target,
+                    m_path,
+                    jumps,
+                    face: Some(face),
+                };
+            }
+            Stop::Lost => return Located::Missing,
+            Stop::Boundary { side, point } => {
+                let Some(map) = atlas.frame.seam_maps[side as usize] else {
+                    return Located::Border;
+                };
+                if jumps == max_jumps {
+                    return Located::Missing;
+                }
+                let across = &topology.sides[topology.sides[side as usize].reverse as usize];
+                face = across.face;
+                entry = Some(across.local);
+                from = map.apply(point);
+                target = map.apply(target);
+                m_path = map.m * m_path;
+                jumps += 1;
+            }
+        }
+    }
+}
