@@ -20,7 +20,7 @@ from .sources import frame_source
 COMPUTE_ARGUMENTS = ("samples", "compute_resolution", "adaptive", "seed", "paper_mode")
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, eq=False)
 class AnimationFrame(Mapping):
     """One frame's features: a mapping feature name -> per-vertex values (as ``uvfeat.compute``
     returns: ``(n_vertices,)`` float32, ``(n_radii, n_vertices)`` for a list of radii).
@@ -37,6 +37,10 @@ class AnimationFrame(Mapping):
     values: dict[str, np.ndarray]
     maps: dict[str, FeatureMap] = field(default_factory=dict)
     timings: dict[str, float] = field(default_factory=dict)
+
+    # Mapping's value equality would compare arrays (ambiguous truth value): frames are compared by identity
+    __eq__ = object.__eq__
+    __hash__ = object.__hash__
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.values[name]
