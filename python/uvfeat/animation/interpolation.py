@@ -41,7 +41,7 @@ class Channel:
 
     @classmethod
     def from_sampler(cls, times, output, interpolation: str | None, width: int, rotation: bool = False,
-                     what: str = "channel") -> "Channel":
+                     what: str = "channel") -> Channel:
         """Checks a glTF sampler (``input`` times, flat ``output`` values of ``width`` numbers per key)
         and builds the channel; ``what`` names it in errors."""
         interpolation = interpolation or "LINEAR"

@@ -45,7 +45,7 @@ class Pose:
     matrix: dict[int, np.ndarray]
     weights: dict[int, np.ndarray]
 
-    def copy(self) -> "Pose":
+    def copy(self) -> Pose:
         return Pose(*({k: v.copy() for k, v in part.items()} for part in
                       (self.translation, self.rotation, self.scale, self.matrix, self.weights)))
 
