@@ -229,3 +229,12 @@ def test_morph_weights_of_a_node_without_mesh_are_refused(tmp_path):
     b.animation("weights", [(empty, "weights", [0.0, 1.0], [0.0, 1.0], "LINEAR")])
     with pytest.raises(AnimationError, match="morph weights of a node without a mesh"):
         GltfAnimation(b.save(tmp_path / "weights.glb")).positions(0.0)
+
+
+def test_compressed_primitives_are_refused(tmp_path):
+    b = GltfBuilder()
+    primitive = b.primitive(*per_vertex_uvs(uvfeat.shapes.plane(1.0, 4)))
+    primitive["extensions"] = {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}
+    b.node(root=True, mesh=b.mesh([primitive]))
+    with pytest.raises(AnimationError, match="compressed \\(KHR_draco_mesh_compression\\); animation needs"):
+        GltfAnimation(b.save(tmp_path / "draco.glb"))

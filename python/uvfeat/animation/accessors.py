@@ -82,6 +82,10 @@ class Accessors:
     def _view(self, index: int, offset: int, dtype: np.dtype, shape: tuple, count: int) -> np.ndarray:
         """``count`` elements of ``shape`` from buffer view ``index``, honouring its byte stride."""
         view = self._gltf.bufferViews[index]
+        compressed = [name for name in field(view, "extensions", {}) if "compression" in name.lower()]
+        if compressed:
+            raise AnimationError(f"{self._name}: buffer view {index} is compressed ({', '.join(compressed)}); "
+                                 "decompress the file first (e.g. gltf-transform copy)")
         data = self._buffer(view.buffer)
         start = (view.byteOffset or 0) + (offset or 0)
         width = int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
