@@ -73,6 +73,12 @@ def _multiply(q: np.ndarray, r: np.ndarray) -> np.ndarray:
                      w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2, w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2])
 
 
+def timed_ms(fn) -> float:
+    started = time.perf_counter()
+    fn()
+    return 1e3 * (time.perf_counter() - started)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--mesh", default=None, help="an animated glTF/GLB file (default: the skinned torus)")
@@ -83,6 +89,7 @@ def main() -> None:
     parser.add_argument("--fps", type=float, default=24.0)
     args = parser.parse_args()
 
+    load = os.getloadavg()
     folder = tempfile.mkdtemp()
     path = args.mesh or skinned_torus(os.path.join(folder, "skinned_torus.glb"))
     started = time.perf_counter()
@@ -96,8 +103,14 @@ def main() -> None:
     print(f"{mesh.name}: {mesh.n_faces} faces, {mesh.n_vertices} vertices, {mesh.n_charts} charts; animation "
           f"{frames.animation_name!r}, {len(frames)} frames at {args.fps:g} fps; {threads} threads; {args.feature} "
           f"at r = {args.radius}")
-    timings = [frame.timings for frame in (frames.frame(k) for k in range(min(args.frames, len(frames))))]
+    timings, cpu_ms = [], []
+    for k in range(min(args.frames, len(frames))):
+        cpu = time.process_time()
+        timings.append(frames.frame(k).timings)
+        cpu_ms.append(1e3 * (time.process_time() - cpu))
     median = {key: float(np.median([t[key] for t in timings])) for key in timings[0]}
+    frames.atlas.update(mesh.positions)
+    reference = timed_ms(lambda: frames.atlas.compute(args.feature, frames.radius))
 
     print(f"\nonce (uvfeat.animate: load, glTF, pre-processing, rasterisation)  {once_ms:9.1f} ms")
     print(f"  pre-processing (welding, charts, seams)   {pre_ms:9.1f} ms")
@@ -107,6 +120,9 @@ def main() -> None:
                        ("features_ms", "features 512² x 256"), ("per_vertex_ms", "per-vertex lookup"),
                        ("total_ms", "total")):
         print(f"  {label:<40}  {median[key]:9.1f} ms")
+    print(f"  {'CPU time, all threads':<40}  {np.median(cpu_ms):9.1f} ms")
+    print(f"  {'features on the mesh at rest (reference)':<40}  {reference:9.1f} ms")
+    print(f"load average before / after: {load[0]:.1f} / {os.getloadavg()[0]:.1f} (other processes slow wall times)")
     buffers_from_scratch = pre_ms + raster_ms
     print(f"\nbuffers per frame: {median['update_ms']:.1f} ms instead of {buffers_from_scratch:.1f} ms from scratch: "
           f"{100 * (1 - median['update_ms'] / buffers_from_scratch):.1f} % of the buffer pipeline is not repeated")
