@@ -9,6 +9,8 @@ Quick start::
     maps = atlas.compute(["mean_curvature", "shape_index"], radius="2%")
     maps["mean_curvature"].texture, maps["mean_curvature"].per_vertex()
     values = uvfeat.compute(mesh, "gaussian_curvature", radius=0.05)   # one shot, per vertex
+    for frame in uvfeat.animate("fox.glb", "mean_curvature", "2%", fps=24):   # per animation frame
+        frame.time, frame["mean_curvature"]
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
@@ -16,9 +18,11 @@ right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex region
 
 from . import errors, examples, shapes
 from ._core import __version__
+from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
 from .compute import compute
 from .errors import (
+    AnimationError,
     InvalidMeshError,
     InvalidParameterError,
     MeshFileError,
@@ -33,9 +37,13 @@ from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 
 __all__ = [
+    "Animation",
+    "AnimationError",
+    "AnimationFrame",
     "Atlas",
     "FEATURES",
     "FeatureMap",
+    "GltfAnimation",
     "Neighbourhoods",
     "compute",
     "InvalidMeshError",
@@ -51,6 +59,7 @@ __all__ = [
     "UVWarning",
     "UvfeatError",
     "__version__",
+    "animate",
     "errors",
     "examples",
     "load",

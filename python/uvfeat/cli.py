@@ -1,4 +1,4 @@
-"""The ``uvfeat`` command line: ``uvfeat atlas``, ``uvfeat demo``. Run ``uvfeat --help``."""
+"""The ``uvfeat`` command line: ``uvfeat atlas``, ``compute``, ``animate``, ``demo``. Run ``uvfeat --help``."""
 
 from __future__ import annotations
 
@@ -233,6 +233,10 @@ def build_parser() -> argparse.ArgumentParser:
     compute.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
     compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
     compute.set_defaults(handler=_on_file(_write_features))
+
+    from .animation.cli import add_command as add_animate_command
+
+    add_animate_command(commands, _add_atlas_options, _add_feature_options)
 
     demo = commands.add_parser("demo", help="run on the built-in Spot mesh: atlas pictures and features at 3 radii")
     _add_atlas_options(demo)

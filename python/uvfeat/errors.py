@@ -35,3 +35,8 @@ class UVWarning(UserWarning):
 
 class MeshWarning(UserWarning):
     """The mesh was changed on load (polygons triangulated) or has defects uvfeat works around."""
+
+
+class AnimationError(UvfeatError, ValueError):
+    """An animation cannot be used: none in the file, unknown name, frames whose vertex count or
+    connectivity disagrees with the mesh, inconsistent keyframe data."""

@@ -159,3 +159,21 @@ def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray,
     fig.colorbar(image, ax=ax, fraction=0.046, pad=0.04, label=unit)
     fig.savefig(os.fspath(path), bbox_inches="tight", transparent=False)
     plt.close(fig)
+
+
+def feature_picture(name: str, texture: np.ndarray, low: float, high: float) -> np.ndarray:
+    """(R, R, 3) uint8 picture of a feature map (v up) in a fixed colour range (the feature's
+    colormap, as :func:`colour_range` picks it), white off the charts: one frame of an animation."""
+    cmap = colour_range(name, texture)[0]
+    rgba, _, _ = scalar_image(texture, cmap, low=low, high=high)
+    rgba[..., :3] += 1.0 - rgba[..., 3:]  # colours are 0 where transparent: this paints those white
+    return _to_image(rgba[..., :3])
+
+
+def save_gif(path: str | os.PathLike, pictures: list[np.ndarray], fps: float) -> None:
+    """An endlessly looping animated GIF of uint8 RGB pictures at ``fps`` frames per second."""
+    from PIL import Image
+
+    frames = [Image.fromarray(p) for p in pictures]
+    frames[0].save(os.fspath(path), save_all=True, append_images=frames[1:], duration=max(20, round(1000 / fps)),
+                   loop=0)

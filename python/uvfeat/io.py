@@ -34,6 +34,39 @@ def _trimesh_geometry(path: str):
     return [loaded]
 
 
+def _parts(path: str) -> list:
+    """The triangle meshes of a file (one per glTF primitive instance), with clear errors."""
+    if not os.path.exists(path):
+        raise MeshFileError(f"no such file: {path!r}")
+    if not os.path.isfile(path) or not os.access(path, os.R_OK):
+        raise MeshFileError(f"not a readable file: {path!r}")
+    extension = os.path.splitext(path)[1].lower().lstrip(".")
+    if extension not in SUPPORTED_FORMATS:
+        raise MeshFileError(f"unsupported format {extension!r} of {path!r}; supported: {', '.join(SUPPORTED_FORMATS)}")
+    return _trimesh_geometry(path)
+
+
+def _merged(parts: list) -> tuple[np.ndarray, np.ndarray]:
+    """Positions and faces of all parts, concatenated in order."""
+    positions = np.concatenate([np.asarray(g.vertices, dtype=np.float64) for g in parts])
+    offsets = np.cumsum([0] + [len(g.vertices) for g in parts])[:-1]
+    faces = np.concatenate([np.asarray(g.faces, dtype=np.int64) + o for g, o in zip(parts, offsets)])
+    return positions, faces
+
+
+def read_geometry(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
+    """Positions ``(n_vertices, 3)`` float64 and faces ``(n_faces, 3)`` int64 of a mesh file, in
+    the order :func:`load` gives them, without building a :class:`~uvfeat.Mesh` or an atlas
+    (animation frames stored as mesh files).
+
+    Raises
+    ------
+    MeshFileError, InvalidMeshError
+        As for :func:`load`.
+    """
+    return _merged(_parts(os.fspath(path)))
+
+
 def _uvs_of(geometry) -> np.ndarray | None:
     uv = getattr(getattr(geometry, "visual", None), "uv", None)
     if uv is None or len(uv) != len(geometry.vertices):
@@ -71,17 +104,8 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
     if uv not in UV_POLICIES:
         raise ValueError(f"uv must be one of {UV_POLICIES}, got {uv!r}")
     path = os.fspath(path)
-    if not os.path.exists(path):
-        raise MeshFileError(f"no such file: {path!r}")
-    if not os.path.isfile(path) or not os.access(path, os.R_OK):
-        raise MeshFileError(f"not a readable file: {path!r}")
-    extension = os.path.splitext(path)[1].lower().lstrip(".")
-    if extension not in SUPPORTED_FORMATS:
-        raise MeshFileError(f"unsupported format {extension!r} of {path!r}; supported: {', '.join(SUPPORTED_FORMATS)}")
-    parts = _trimesh_geometry(path)
-    positions = np.concatenate([np.asarray(g.vertices, dtype=np.float64) for g in parts])
-    offsets = np.cumsum([0] + [len(g.vertices) for g in parts])[:-1]
-    faces = np.concatenate([np.asarray(g.faces, dtype=np.int64) + o for g, o in zip(parts, offsets)])
+    parts = _parts(path)
+    positions, faces = _merged(parts)
     part_uvs = [_uvs_of(g) for g in parts]
     name = os.path.basename(path)
     has_uvs = all(u is not None for u in part_uvs)

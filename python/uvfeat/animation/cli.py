@@ -1,0 +1,108 @@
+"""``uvfeat animate``: features of every frame of an animation, written as per-frame files and an
+animated GIF of each feature map."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+import warnings
+
+import numpy as np
+
+
+def add_command(commands, add_atlas_options, add_feature_options) -> None:
+    """Registers ``uvfeat animate`` on the CLI's sub-command parsers."""
+    parser = commands.add_parser(
+        "animate", help="features of every frame of an animation (glTF skins/morphs, mesh files or a .npy array)",
+        description="Writes frame_NNNN.npz (time, positions, per-vertex features), FEATURE_NNNN.npy and .png maps "
+        "(v up, one colour range for all frames), FEATURE.gif and summary.json (timings per frame).")
+    parser.add_argument("mesh", help="mesh file; a glTF/GLB file plays its own animation unless --frames is given")
+    parser.add_argument("--frames", nargs="+", metavar="FILE", help="frames: one .npy array (n_frames, V, 3) or "
+                        "mesh files with the mesh's vertices and faces, in order")
+    parser.add_argument("--animation", help="glTF animation to play, by name or index (default: the first)")
+    parser.add_argument("--fps", type=float, default=24.0, help="frames per second (default 24)")
+    parser.add_argument("--max-frames", type=int, default=None, help="stop after this many frames")
+    parser.add_argument("--feature", default="mean_curvature", help="comma-separated feature names, or 'all'")
+    parser.add_argument("--radius", default="2%", help="one radius, in object units or %% of the bounding-box "
+                        "diagonal of the mesh as loaded (default 2%%)")
+    add_atlas_options(parser)
+    add_feature_options(parser)
+    parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
+    parser.add_argument("--seed", type=int, default=0, help="sample-pattern seed, the same for every frame")
+    parser.set_defaults(handler=run)
+
+
+def _frames_argument(frames: list[str] | None):
+    if frames and len(frames) == 1 and frames[0].endswith(".npy"):
+        return np.load(frames[0])
+    return frames
+
+
+def _progress(console):
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    return Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                    TextColumn("{task.fields[rate]:.2f} frames/s"), TimeElapsedColumn(), TimeRemainingColumn(),
+                    console=console, transient=True, disable=not console.is_terminal)
+
+
+def run(args) -> int:
+    from PIL import Image
+
+    from .. import __version__
+    from ..cli import _console
+    from ..errors import InvalidParameterError
+    from ..images import colour_range, feature_picture, save_gif
+    from .animate import animate
+
+    console, started = _console(), time.perf_counter()
+    if "," in args.radius:
+        raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        frames = animate(args.mesh, args.feature, args.radius, frames=_frames_argument(args.frames), fps=args.fps,
+                         animation=args.animation, resolution=args.resolution, uv=args.uv, samples=args.samples,
+                         compute_resolution=args.compute_resolution, seed=args.seed)
+    notes = sorted({str(w.message) for w in caught}) + frames.atlas.warnings()
+    total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
+    os.makedirs(args.out, exist_ok=True)
+    ranges, pictures, per_frame = {}, {name: [] for name in frames.features}, []
+    with _progress(console) as progress:
+        task = progress.add_task(f"{frames.mesh.name}: {', '.join(frames.features)}", total=total, rate=0.0)
+        playing = time.perf_counter()
+        for frame in (frames.frame(k) for k in range(total)):
+            np.savez_compressed(os.path.join(args.out, f"frame_{frame.index:04d}.npz"), time=frame.time,
+                                positions=frame.positions, **frame.values)
+            for name, feature in frame.maps.items():
+                if name not in ranges:  # the first frame fixes the colours, so frames compare
+                    ranges[name] = colour_range(name, feature.texture)[1:]
+                np.save(os.path.join(args.out, f"{name}_{frame.index:04d}.npy"), feature.texture)
+                picture = feature_picture(name, feature.texture, *ranges[name])
+                Image.fromarray(picture).save(os.path.join(args.out, f"{name}_{frame.index:04d}.png"))
+                pictures[name].append(picture)
+            per_frame.append(dict(index=frame.index, time=frame.time, **frame.timings))
+            progress.update(task, advance=1, rate=(frame.index + 1) / (time.perf_counter() - playing))
+    for name, frame_pictures in pictures.items():
+        if frame_pictures:
+            save_gif(os.path.join(args.out, f"{name}.gif"), frame_pictures, args.fps)
+    mean_ms = {key: float(np.mean([f[key] for f in per_frame])) for key in per_frame[0] if key.endswith("_ms")} \
+        if per_frame else {}
+    summary = {
+        "uvfeat": __version__, "mesh": frames.mesh.name, "animation": frames.animation_name, "frames": total,
+        "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": args.samples,
+                     "resolution": args.resolution, "compute_resolution": args.compute_resolution, "seed": args.seed},
+        "colour_ranges": ranges, "warnings": notes, "diagnostics": frames.atlas.diagnostics,
+        "timings": {"once_s": frames.atlas.timings, "mean_per_frame_ms": mean_ms, "per_frame": per_frame,
+                    "total_s": time.perf_counter() - started},
+    }
+    with open(os.path.join(args.out, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2, default=float)
+    what = f"animation {frames.animation_name!r} of " if frames.animation_name else ""
+    console.print(f"{what}{frames.mesh.name}: {total} frames, {mean_ms.get('total_ms', 0.0):.0f} ms per frame "
+                  f"(buffers {mean_ms.get('update_ms', 0.0):.0f} ms, features {mean_ms.get('features_ms', 0.0):.0f} ms)")
+    for note in notes:
+        console.print(f"[yellow]note:[/yellow] {note}")
+    console.print(f"wrote frame_*.npz, per-frame maps .npy/.png, {', '.join(f + '.gif' for f in frames.features)} "
+                  f"and summary.json to {args.out}")
+    return 0
