@@ -40,6 +40,10 @@ pub enum UvfeatError {
     #[error("all {faces} faces have zero-area UV triangles: the UV map is degenerate")]
     AllUvDegenerate { faces: usize },
 
+    /// Every face has repeated corners or zero area, so the surface has nothing to measure.
+    #[error("all {faces} faces are degenerate (repeated corners or zero area): the mesh has no surface to measure")]
+    DegenerateMesh { faces: usize },
+
     /// A buffer resolution is zero or absurdly large.
     #[error("resolution {resolution} is not valid: it must be a positive integer of at most {max}")]
     InvalidResolution { resolution: usize, max: usize },

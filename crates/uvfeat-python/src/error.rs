@@ -22,7 +22,8 @@ pub fn to_py(err: UvfeatError) -> PyErr {
         | UvfeatError::NonFinitePosition { .. }
         | UvfeatError::IndexOutOfRange { .. }
         | UvfeatError::ShapeMismatch { .. }
-        | UvfeatError::FrameVertexCount { .. } => InvalidMeshError::new_err(msg),
+        | UvfeatError::FrameVertexCount { .. }
+        | UvfeatError::DegenerateMesh { .. } => InvalidMeshError::new_err(msg),
         UvfeatError::ResolutionTooLarge { .. } => ResolutionTooLargeError::new_err(msg),
         UvfeatError::InvalidResolution { .. }
         | UvfeatError::InvalidParameter { .. }

@@ -17,8 +17,9 @@ pub struct WeightedSums {
 }
 
 impl WeightedSums {
+    /// Adds one sample of the integrand `g` with weight `w`.
     #[inline]
-    fn add(&mut self, w: f64, g: f64) {
+    pub fn add(&mut self, w: f64, g: f64) {
         self.w += w;
         self.w2 += w * w;
         self.wg += w * g;

@@ -61,9 +61,7 @@ impl TriangleMesh {
                 got: uv_faces.len(),
             });
         }
-        if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
-            return Err(UvfeatError::NonFinitePosition { index, value: *p });
-        }
+        let positions = checked_positions(positions)?;
         if let Some((index, uv)) = uvs.iter().enumerate().find(|(_, uv)| !uv.iter().all(|c| c.is_finite())) {
             return Err(UvfeatError::NonFiniteUv { index, value: *uv });
         }
@@ -73,8 +71,8 @@ impl TriangleMesh {
             return Err(UvfeatError::UvOutOfRange { index, value: *uv });
         }
         Ok(Self {
-            positions: positions.iter().map(|p| DVec3::from_array(*p)).collect(),
             faces: checked_indices(faces, positions.len(), "vertex")?,
+            positions,
             uvs: uvs.iter().map(|uv| DVec2::from_array(*uv)).collect(),
             uv_faces: checked_indices(uv_faces, uvs.len(), "uv")?,
         })
@@ -86,7 +84,22 @@ impl TriangleMesh {
     }
 }
 
-fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static str) -> Result<Vec<[u32; 3]>> {
+/// Positions as vectors, once every coordinate is known to be finite.
+///
+/// # Errors
+/// [`UvfeatError::NonFinitePosition`] naming the first bad vertex.
+pub(crate) fn checked_positions(positions: &[[f64; 3]]) -> Result<Vec<DVec3>> {
+    if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        return Err(UvfeatError::NonFinitePosition { index, value: *p });
+    }
+    Ok(positions.iter().map(|p| DVec3::from_array(*p)).collect())
+}
+
+/// Face rows as `u32` indices, once every index is known to be in `0..count`.
+///
+/// # Errors
+/// [`UvfeatError::IndexOutOfRange`] naming the first bad face.
+pub(crate) fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static str) -> Result<Vec<[u32; 3]>> {
     rows.iter()
         .enumerate()
         .map(|(face, row)| {
