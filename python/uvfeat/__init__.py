@@ -9,12 +9,13 @@ Quick start::
     maps = atlas.compute(["mean_curvature", "shape_index"], radius="2%")
     maps["mean_curvature"].texture, maps["mean_curvature"].per_vertex()
     values = uvfeat.compute(mesh, "gaussian_curvature", radius=0.05)   # one shot, per vertex
+    ref = uvfeat.reference.compute(mesh, "gaussian_curvature", radius=0.05)  # object-space reference
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
 """
 
-from . import errors, examples, shapes
+from . import errors, examples, reference, shapes
 from ._core import __version__
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
 from .compute import compute
@@ -54,5 +55,6 @@ __all__ = [
     "errors",
     "examples",
     "load",
+    "reference",
     "shapes",
 ]

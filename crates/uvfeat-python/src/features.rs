@@ -12,7 +12,7 @@ use uvfeat_core::output::{per_vertex, ComputeSettings, FeatureMaps, VertexQuery}
 use uvfeat_core::sampling::{neighbourhood_tile, Criterion};
 use uvfeat_core::UvfeatError;
 
-fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
+pub(crate) fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
     options.iter().find(|(k, _)| *k == value).map(|(_, v)| *v).ok_or_else(|| {
         let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
         to_py(UvfeatError::InvalidParameter { name, reason: format!("{value:?} is not one of {valid:?}") })
