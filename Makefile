@@ -13,7 +13,7 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh xatlas matplotlib pillow rich pytest
+	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh xatlas matplotlib pillow rich pytest pygeodesic
 	$(BIN)/maturin develop --release -q
 
 demo: install

@@ -1,4 +1,4 @@
-"""The ``uvfeat`` command line: ``uvfeat atlas``, ``uvfeat demo``. Run ``uvfeat --help``."""
+"""The ``uvfeat`` command line: ``uvfeat atlas``, ``compute``, ``compare``, ``demo``. Run ``uvfeat --help``."""
 
 from __future__ import annotations
 
@@ -162,6 +162,49 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
     return summary
 
 
+def _write_comparison(mesh, args, console, load_notes: list[str], started: float) -> dict:
+    """Runs both methods, prints the errors and timings (or JSON) and writes the pictures."""
+    from .compare import compare, save_comparison_pictures
+
+    with _steps(console, 2) as advance:
+        advance("reference + parametric", done=False)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
+                             compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
+                             seed=args.seed, query=args.query)
+        advance("pictures")
+        summary = result.to_dict()
+        summary["warnings"] = load_notes + sorted({str(w.message) for w in caught})
+        if not args.no_pictures:
+            pictures = save_comparison_pictures(result, args.out)
+            summary["pictures"] = {k: os.path.basename(v) for k, v in pictures.items()}
+        os.makedirs(args.out, exist_ok=True)
+        with open(os.path.join(args.out, "compare.json"), "w") as f:
+            json.dump(summary, f, indent=2, default=float)
+    if args.json:
+        print(json.dumps(summary, indent=2, default=float))
+        return summary
+    from rich.table import Table
+
+    t = result.timings
+    table = Table(title=f"{mesh.name}: r = {result.radius:.4g} ({args.radius})")
+    for column in ("feature", "%AE", "mean-normalised", "compared vertices"):
+        table.add_column(column, justify="left" if column == "feature" else "right")
+    for name, e in result.errors.items():
+        table.add_row(name, f"{e['percent_ae']:.3f}", f"{e['mean_normalised']:.4f}", str(e["compared"]))
+    console.print(table)
+    console.print(f"parametric {1e3 * t['parametric']:.0f} ms (buffers {1e3 * t['parametric_buffers']:.0f}, "
+                  f"features {1e3 * t['parametric_features']:.0f}, per-vertex {1e3 * t['parametric_per_vertex']:.0f}); "
+                  f"reference {1e3 * t['reference']:.0f} ms; speed-up {t['speedup']:.2f}x "
+                  f"(untimed: pre-processing {1e3 * t['untimed_preprocessing']:.0f} ms, "
+                  f"half-edges {1e3 * t['untimed_connectivity']:.0f} ms)")
+    for note in summary["warnings"]:
+        console.print(f"[yellow]note:[/yellow] {note}")
+    console.print(f"wrote compare.json{' and pictures' if not args.no_pictures else ''} to {args.out}")
+    return summary
+
+
 def _cmd_demo(args) -> int:
     from .examples import spot_path
 
@@ -233,6 +276,31 @@ def build_parser() -> argparse.ArgumentParser:
     compute.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
     compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
     compute.set_defaults(handler=_on_file(_write_features))
+
+    compare = commands.add_parser("compare", help="run the parametric method and the object-space reference "
+                                  "side by side: errors, timings, pictures",
+                                  description="Prints %%AE (SPEC §5.1: mean |f - f_ref| over the Q1-Q99 range of "
+                                  "f_ref) and the mean-normalised error per feature, the time of each method "
+                                  "(parametric: buffers + features + per-vertex lookup; reference: without the "
+                                  "half-edge construction) and the speed-up; writes compare_FEATURE.png "
+                                  "(parametric | reference | difference), error_FEATURE.png and compare.json.")
+    compare.add_argument("mesh", help="mesh file (obj, ply, glb, gltf, off, stl)")
+    compare.add_argument("--feature", default="mean_curvature",
+                         help="comma-separated names, or 'all' (" + ", ".join(_feature_names()) + ")")
+    compare.add_argument("--radius", default="2%", help="radius in object units or %% of the bounding-box diagonal "
+                         "(default 2%%)")
+    _add_atlas_options(compare)
+    _add_feature_options(compare)
+    compare.add_argument("--gaussian-method", choices=("moments", "geodesic_area", "exact_geodesic_area"),
+                         default="moments", help="K of both sides; exact_geodesic_area: exact geodesics in the "
+                         "reference, geodesic-area K on the parametric side")
+    compare.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
+    compare.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising")
+    compare.add_argument("--seed", type=int, default=0)
+    compare.add_argument("--query", choices=("texture", "direct"), default="texture", help="parametric per-vertex query")
+    compare.add_argument("--no-pictures", action="store_true", help="errors and timings only")
+    compare.add_argument("--json", action="store_true", help="print the summary as JSON on stdout")
+    compare.set_defaults(handler=_on_file(_write_comparison), out="uvfeat-out/compare")
 
     demo = commands.add_parser("demo", help="run on the built-in Spot mesh: atlas pictures and features at 3 radii")
     _add_atlas_options(demo)

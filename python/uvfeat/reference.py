@@ -115,6 +115,15 @@ class Reference:
                           "the edge length): their values are NaN", UserWarning, stacklevel=2)
         return dict(zip(names, values))
 
+    def geodesic_distances(self, source: int, max_distance: float = np.inf) -> np.ndarray:
+        """Exact polyhedral geodesic distances (the ones behind ``"exact_geodesic_area"``) from
+        vertex ``source`` to every vertex, ``(n_vertices,)`` float64, ``inf`` beyond
+        ``max_distance`` (object units; the search costs grow with it) and off ``source``'s
+        connected part."""
+        if isinstance(source, bool) or not isinstance(source, (int, np.integer)):
+            raise InvalidParameterError(f"source must be a vertex index, got {source!r}")
+        return self._core.geodesic_distances(int(source), float(max_distance))
+
 
 def compute(mesh: Mesh, features, radius, *, vertices=None, return_timings: bool = False, **options):
     """Per-vertex object-space reference values of ``mesh`` (one value per row of

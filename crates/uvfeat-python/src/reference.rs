@@ -30,6 +30,14 @@ impl PyReferenceMesh {
         self.inner.connectivity().n_vertices()
     }
 
+    /// (n,) exact geodesic distances from input vertex `source`, `inf` beyond `max_distance`.
+    fn geodesic_distances<'py>(&self, py: Python<'py>, source: i64, max_distance: f64) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let inner = &self.inner;
+        let d = guarded(py, || inner.geodesic_distances(source, max_distance))?;
+        let n = d.len();
+        to_numpy(py, d, &[n])
+    }
+
     /// `(values, samples)`: one (n,) float64 array per feature and the (n,) sample counts, at
     /// every input vertex or at `vertices` (GIL released, parallel).
     #[allow(clippy::too_many_arguments)]

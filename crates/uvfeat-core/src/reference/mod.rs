@@ -147,6 +147,33 @@ impl ReferenceMesh {
         &self.connectivity
     }
 
+    /// Exact polyhedral geodesic distances from input vertex `source` to every input vertex, up
+    /// to `max_distance` (`+inf` beyond it and off `source`'s connected part).
+    ///
+    /// # Errors
+    /// [`UvfeatError::InvalidParameter`] for a vertex that does not exist or a `max_distance`
+    /// that is not positive.
+    pub fn geodesic_distances(&self, source: i64, max_distance: f64) -> Result<Vec<f64>> {
+        let n_input = self.positions.len();
+        if source < 0 || source as usize >= n_input {
+            return Err(UvfeatError::InvalidParameter {
+                name: "source",
+                reason: format!("vertex {source} does not exist (the mesh has {n_input})"),
+            });
+        }
+        if !(max_distance > 0.0) {
+            return Err(UvfeatError::InvalidParameter {
+                name: "max_distance",
+                reason: format!("must be a positive length (inf for no limit), got {max_distance}"),
+            });
+        }
+        let geometry = Geometry::new(&self.connectivity, &self.positions);
+        let mut search = ExactGeodesic::new(self.connectivity.n_vertices());
+        let ids = &self.connectivity.vertex_ids;
+        search.run(ids[source as usize], max_distance, &self.connectivity, &geometry);
+        Ok(ids.iter().map(|&g| search.distances.get(g)).map(|d| if d <= max_distance { d } else { f64::INFINITY }).collect())
+    }
+
     /// The features of `settings` at every input vertex (`vertices = None`) or at the listed
     /// input vertices, in parallel over vertices (`RAYON_NUM_THREADS` caps the threads; results
     /// do not depend on it).
