@@ -30,6 +30,7 @@ test: test-rs test-py
 bench: install
 	$(BIN)/python benches/bench_atlas.py
 	$(BIN)/python benches/bench_features.py
+	$(BIN)/python benches/bench_reference.py --exact
 
 clean:
 	rm -rf $(VENV) target uvfeat-out

@@ -19,6 +19,16 @@ pub(crate) fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str,
     })
 }
 
+/// Features from their public names.
+pub(crate) fn feature_list(names: &[String]) -> PyResult<Vec<Feature>> {
+    names.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)
+}
+
+/// The volume weighting of its public name.
+pub(crate) fn volume_weighting_named(value: &str) -> PyResult<VolumeWeighting> {
+    choice("volume_weighting", value, &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)])
+}
+
 /// Builds and validates core settings from the Python keyword arguments.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
@@ -41,8 +51,7 @@ pub fn compute_settings(
     flat_tol: f64,
     standard_error: bool,
 ) -> PyResult<PySettings> {
-    let features = features.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)?;
-    let mut s = ComputeSettings::new(features, radius);
+    let mut s = ComputeSettings::new(feature_list(&features)?, radius);
     s.samples = samples;
     s.resolution = compute_resolution;
     s.adaptive = adaptive;
@@ -56,11 +65,7 @@ pub fn compute_settings(
         gaussian_method,
         &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
     )?;
-    s.volume_weighting = choice(
-        "volume_weighting",
-        volume_weighting,
-        &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)],
-    )?;
+    s.volume_weighting = volume_weighting_named(volume_weighting)?;
     s.rho_min_fraction = rho_min;
     s.flat_tol = flat_tol;
     s.standard_errors = standard_error;

@@ -1,11 +1,10 @@
 //! The object-space reference (SPEC §5.1): a prepared mesh and per-vertex features.
 
 use crate::arrays::{rows, to_numpy};
-use crate::error::{guarded, to_py};
-use crate::features::choice;
+use crate::error::guarded;
+use crate::features::{choice, feature_list, volume_weighting_named};
 use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use uvfeat_core::features::{Feature, VolumeWeighting};
 use uvfeat_core::reference::{ReferenceGaussian, ReferenceMesh, ReferenceSettings};
 
 /// A mesh welded and connected for the reference (the untimed half-edge step).
@@ -53,8 +52,7 @@ impl PyReferenceMesh {
         flat_tol: f64,
         vertices: Option<PyReadonlyArray1<'_, i64>>,
     ) -> PyResult<PerVertex<'py>> {
-        let features = features.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)?;
-        let mut settings = ReferenceSettings::new(features, radius);
+        let mut settings = ReferenceSettings::new(feature_list(&features)?, radius);
         settings.gaussian_method = choice(
             "gaussian_method",
             gaussian_method,
@@ -64,11 +62,7 @@ impl PyReferenceMesh {
                 ("exact_geodesic_area", ReferenceGaussian::ExactGeodesicArea),
             ],
         )?;
-        settings.volume_weighting = choice(
-            "volume_weighting",
-            volume_weighting,
-            &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)],
-        )?;
+        settings.volume_weighting = volume_weighting_named(volume_weighting)?;
         settings.rho_min_fraction = rho_min;
         settings.flat_tol = flat_tol;
         let vertices = vertices.map(|v| v.as_slice().map(<[i64]>::to_vec)).transpose()?;
