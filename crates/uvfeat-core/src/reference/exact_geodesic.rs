@@ -1,8 +1,8 @@
 //! Exact polyhedral geodesic distances from one vertex to the vertices within a bound: the
 //! distance behind the accurate geodesic-area K of the reference (SPEC §5.1, §3.5).
 //!
-//! Window propagation in the manner of Chen & Han (1990) with the priority order and the
-//! vertex-distance filter of Xin & Wang (2009, "ICH"). A *window* is an interval of an edge
+//! Window propagation in the manner of Chen & Han (1990) with the priority order and a
+//! vertex-distance filter after Xin & Wang (2009, "ICH"). A *window* is an interval of an edge
 //! together with the planar unfolding of its (pseudo-)source: every point `x` of the interval is
 //! at distance `sigma + |x - s|`. Windows are unfolded across faces in the order of their
 //! smallest distance; a vertex where shortest paths may bend (a saddle, angle sum above `2 pi`, or
@@ -278,9 +278,11 @@ impl ExactGeodesic {
         }
     }
 
-    /// The ICH filter: a window can be dropped when, for every point `x` of it, reaching `x` from
-    /// an endpoint of its edge (known distance, then along the edge) is shorter. Every path the
-    /// window would carry then has a shorter alternative. The margin `sigma + |s - x| - x`
+    /// A filter in the spirit of ICH's, in a form that is provably safe: a window can be dropped
+    /// when, for every point `x` of it, reaching `x` from an endpoint of its edge (known distance,
+    /// then along the edge) is shorter. Every path the window would carry then has a shorter
+    /// alternative (and a straight one through that endpoint, which the pseudo-sources and
+    /// [`Self::distance_in_face`]'s corner terms cover). The margin `sigma + |s - x| - x`
     /// decreases along the edge, so checking the far end of the interval suffices for the origin
     /// (and the near end for the target).
     fn dominated(&self, surface: &Surface, w: &Window) -> bool {
