@@ -13,7 +13,7 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh xatlas matplotlib pillow rich pygltflib pytest
+	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh xatlas matplotlib pillow rich pygltflib pytest pygeodesic
 	$(BIN)/maturin develop --release -q
 
 demo: install
@@ -31,6 +31,7 @@ bench: install
 	$(BIN)/python benches/bench_atlas.py
 	$(BIN)/python benches/bench_features.py
 	$(BIN)/python benches/bench_animate.py
+	$(BIN)/python benches/bench_reference.py --exact
 
 clean:
 	rm -rf $(VENV) target uvfeat-out

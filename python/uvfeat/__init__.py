@@ -11,12 +11,13 @@ Quick start::
     values = uvfeat.compute(mesh, "gaussian_curvature", radius=0.05)   # one shot, per vertex
     for frame in uvfeat.animate("fox.glb", "mean_curvature", "2%", fps=24):   # per animation frame
         frame.time, frame["mean_curvature"]
+    ref = uvfeat.reference.compute(mesh, "gaussian_curvature", radius=0.05)  # object-space reference
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
 """
 
-from . import errors, examples, shapes
+from . import errors, examples, reference, shapes
 from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
@@ -63,5 +64,6 @@ __all__ = [
     "errors",
     "examples",
     "load",
+    "reference",
     "shapes",
 ]

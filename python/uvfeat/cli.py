@@ -1,4 +1,5 @@
-"""The ``uvfeat`` command line: ``uvfeat atlas``, ``compute``, ``animate``, ``demo``. Run ``uvfeat --help``."""
+"""The ``uvfeat`` command line: ``uvfeat atlas``, ``compute``, ``compare``, ``animate``, ``demo``.
+Run ``uvfeat --help``."""
 
 from __future__ import annotations
 
@@ -91,6 +92,12 @@ def _radius_tag(radius) -> str:
     return str(radius).strip().replace("%", "pct").replace(".", "p")
 
 
+def _print_notes_and_outputs(console, notes: list[str], written: str, out: str) -> None:
+    for note in notes:
+        console.print(f"[yellow]note:[/yellow] {note}")
+    console.print(f"wrote {written} to {out}")
+
+
 def _write_features(mesh, args, console, load_notes: list[str], started: float) -> dict:
     """Computes the features at every radius and writes per-vertex files, maps and a summary."""
     import numpy as np
@@ -156,9 +163,50 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
         console.print(f"r = {radius} ({info['radius']:.4g}): {info['features_s']:.2f} s, "
                       f"{d['mean_valid_samples']:.0f} samples/texel, {100 * d['missing_fraction']:.2f} % missing, "
                       f"{d['truncated_texels']} texels truncated by mesh borders")
-    for note in summary["warnings"]:
-        console.print(f"[yellow]note:[/yellow] {note}")
-    console.print(f"wrote per-vertex .ply/.npz, maps .npy/.png and summary.json to {args.out}")
+    _print_notes_and_outputs(console, summary["warnings"], "per-vertex .ply/.npz, maps .npy/.png and summary.json",
+                             args.out)
+    return summary
+
+
+def _write_comparison(mesh, args, console, load_notes: list[str], started: float) -> dict:
+    """Runs both methods, prints the errors and timings (or JSON) and writes the pictures."""
+    from .compare import compare, save_comparison_pictures
+
+    with _steps(console, 2) as advance:
+        advance("reference + parametric", done=False)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
+                             compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
+                             seed=args.seed, query=args.query)
+        advance("pictures")
+        summary = result.to_dict()
+        summary["warnings"] = load_notes + sorted({str(w.message) for w in caught})
+        if not args.no_pictures:
+            pictures = save_comparison_pictures(result, args.out)
+            summary["pictures"] = {k: os.path.basename(v) for k, v in pictures.items()}
+        os.makedirs(args.out, exist_ok=True)
+        with open(os.path.join(args.out, "compare.json"), "w") as f:
+            json.dump(summary, f, indent=2, default=float)
+    if args.json:
+        print(json.dumps(summary, indent=2, default=float))
+        return summary
+    from rich.table import Table
+
+    t = result.timings
+    table = Table(title=f"{mesh.name}: r = {result.radius:.4g} ({args.radius})")
+    for column in ("feature", "%AE", "mean-normalised", "compared vertices"):
+        table.add_column(column, justify="left" if column == "feature" else "right")
+    for name, e in result.errors.items():
+        table.add_row(name, f"{e['percent_ae']:.3f}", f"{e['mean_normalised']:.4f}", str(e["compared"]))
+    console.print(table)
+    console.print(f"parametric {1e3 * t['parametric']:.0f} ms (buffers {1e3 * t['parametric_buffers']:.0f}, "
+                  f"features {1e3 * t['parametric_features']:.0f}, per-vertex {1e3 * t['parametric_per_vertex']:.0f}); "
+                  f"reference {1e3 * t['reference']:.0f} ms; speed-up {t['speedup']:.2f}x "
+                  f"(untimed: pre-processing {1e3 * t['untimed_preprocessing']:.0f} ms, "
+                  f"half-edges {1e3 * t['untimed_connectivity']:.0f} ms)")
+    _print_notes_and_outputs(console, summary["warnings"], "compare.json" + ("" if args.no_pictures else " and pictures"),
+                             args.out)
     return summary
 
 
@@ -197,6 +245,21 @@ def _add_feature_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
 
 
+def _add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:
+    """Arguments shared by the commands that compute features on a mesh file."""
+    parser.add_argument("mesh", help="mesh file (obj, ply, glb, gltf, off, stl)")
+    parser.add_argument("--feature", default="mean_curvature",
+                        help="comma-separated names, or 'all' (" + ", ".join(_feature_names()) + ")")
+    parser.add_argument("--radius", default="2%", help="radius in object units or %% of the bounding-box diagonal"
+                        f"{radius_note} (default 2%%)")
+    _add_atlas_options(parser)
+    _add_feature_options(parser)
+    parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
+    parser.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="uvfeat", description="Multi-scale geometric features of triangle meshes, "
                                      "computed in UV parameter space.")
@@ -218,21 +281,26 @@ def build_parser() -> argparse.ArgumentParser:
     compute = commands.add_parser("compute", help="compute features and write per-vertex values, maps and pictures",
                                   description="Writes per_vertex_r*.ply (vertex properties + colours) and .npz, "
                                   "FEATURE_r*.npy and .png maps (v up), and summary.json.")
-    compute.add_argument("mesh", help="mesh file (obj, ply, glb, gltf, off, stl)")
-    compute.add_argument("--feature", default="mean_curvature",
-                         help="comma-separated names, or 'all' (" + ", ".join(_feature_names()) + ")")
-    compute.add_argument("--radius", default="2%", help="radius in object units or %% of the bounding-box diagonal; "
-                         "comma-separated for several scales (default 2%%)")
-    _add_atlas_options(compute)
-    _add_feature_options(compute)
-    compute.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
-    compute.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising")
+    _add_feature_command_options(compute, "; comma-separated for several scales")
     compute.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (SPEC §1.8)")
     compute.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
-    compute.add_argument("--seed", type=int, default=0)
-    compute.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
     compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
     compute.set_defaults(handler=_on_file(_write_features))
+
+    compare = commands.add_parser("compare", help="run the parametric method and the object-space reference "
+                                  "side by side: errors, timings, pictures",
+                                  description="Prints %%AE (SPEC §5.1: mean |f - f_ref| over the Q1-Q99 range of "
+                                  "f_ref) and the mean-normalised error per feature, the time of each method "
+                                  "(parametric: buffers + features + per-vertex lookup; reference: without the "
+                                  "half-edge construction) and the speed-up; writes compare_FEATURE.png "
+                                  "(parametric | reference | difference), error_FEATURE.png and compare.json.")
+    _add_feature_command_options(compare, "")
+    compare.add_argument("--gaussian-method", choices=("moments", "geodesic_area", "exact_geodesic_area"),
+                         default="moments", help="K of both sides; exact_geodesic_area: exact geodesics in the "
+                         "reference, geodesic-area K on the parametric side")
+    compare.add_argument("--no-pictures", action="store_true", help="errors and timings only")
+    compare.add_argument("--json", action="store_true", help="print the summary as JSON on stdout")
+    compare.set_defaults(handler=_on_file(_write_comparison), out="uvfeat-out/compare")
 
     from .animation.cli import add_command as add_animate_command
 

@@ -24,11 +24,7 @@ pub struct AtlasOptions {
 
 impl Default for AtlasOptions {
     fn default() -> Self {
-        Self {
-            resolution: 1024,
-            precision: Precision::F32,
-            memory_budget: 8 << 30,
-        }
+        Self { resolution: 1024, precision: Precision::F32, memory_budget: 8 << 30 }
     }
 }
 
@@ -53,22 +49,12 @@ impl Atlas {
     /// # Errors
     /// [`UvfeatError::InvalidResolution`], [`UvfeatError::ResolutionTooLarge`] (with the memory it
     /// would take), and the position errors of [`Frame::new`].
-    pub fn new(
-        topology: Arc<Topology>,
-        positions: &[DVec3],
-        options: &AtlasOptions,
-    ) -> Result<Self> {
+    pub fn new(topology: Arc<Topology>, positions: &[DVec3], options: &AtlasOptions) -> Result<Self> {
         check_resolution(options)?;
         let frame = Frame::new(&topology, positions)?;
         let coverage = Coverage::build(&topology, options.resolution);
         let buffers = GeometryBuffers::evaluate(&topology, &coverage, &frame, options.precision);
-        Ok(Self {
-            topology,
-            coverage,
-            frame,
-            buffers,
-            precision: options.precision,
-        })
+        Ok(Self { topology, coverage, frame, buffers, precision: options.precision })
     }
 
     /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, buffers) for new
@@ -78,8 +64,7 @@ impl Atlas {
     /// Vertex count mismatch or non-finite positions; the atlas is unchanged then.
     pub fn update(&mut self, positions: &[DVec3]) -> Result<()> {
         self.frame.refresh(&self.topology, positions)?;
-        self.buffers
-            .refresh(&self.topology, &self.coverage, &self.frame, self.precision);
+        self.buffers.refresh(&self.topology, &self.coverage, &self.frame, self.precision);
         Ok(())
     }
 
@@ -110,10 +95,7 @@ impl Atlas {
             return Some(t);
         }
         let n = self.resolution() as i64;
-        let (ci, cj) = (
-            (uv.x * n as f64).floor() as i64,
-            (uv.y * n as f64).floor() as i64,
-        );
+        let (ci, cj) = ((uv.x * n as f64).floor() as i64, (uv.y * n as f64).floor() as i64);
         let mut best: Option<(f64, usize)> = None;
         for j in (cj - 1).max(0)..=(cj + 1).min(n - 1) {
             for i in (ci - 1).max(0)..=(ci + 1).min(n - 1) {
@@ -133,10 +115,7 @@ impl Atlas {
     /// Centre of texel `t` in parametric coordinates.
     pub fn texel_centre(&self, t: usize) -> DVec2 {
         let r = self.resolution();
-        DVec2::new(
-            ((t % r) as f64 + 0.5) / r as f64,
-            ((t / r) as f64 + 0.5) / r as f64,
-        )
+        DVec2::new(((t % r) as f64 + 0.5) / r as f64, ((t / r) as f64 + 0.5) / r as f64)
     }
 }
 
@@ -147,10 +126,7 @@ pub fn buffer_bytes(resolution: usize) -> u64 {
 
 fn check_resolution(options: &AtlasOptions) -> Result<()> {
     if options.resolution == 0 || options.resolution > MAX_RESOLUTION {
-        return Err(UvfeatError::InvalidResolution {
-            resolution: options.resolution,
-            max: MAX_RESOLUTION,
-        });
+        return Err(UvfeatError::InvalidResolution { resolution: options.resolution, max: MAX_RESOLUTION });
     }
     let needed = buffer_bytes(options.resolution);
     if needed > options.memory_budget {

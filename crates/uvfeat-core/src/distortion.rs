@@ -45,10 +45,7 @@ impl Distortion {
 /// parameterisation. Averaging the inverses (uv per object length) is what keeps a sliver out: its
 /// huge stretch becomes a tiny inverse, while a plain mean of the metrics would be dominated by it.
 /// The error it can make is on the safe side, an ellipse larger than needed.
-pub fn corner_metrics(
-    topology: &Topology,
-    face_metric: impl Fn(usize) -> Option<[f64; 3]>,
-) -> Vec<[f64; 3]> {
+pub fn corner_metrics(topology: &Topology, face_metric: impl Fn(usize) -> Option<[f64; 3]>) -> Vec<[f64; 3]> {
     let mut sums = vec![[0.0f64; 4]; topology.n_corners];
     for (f, groups) in topology.corner_groups.iter().enumerate() {
         let Some(inverse) = face_metric(f).and_then(invert) else {
@@ -67,13 +64,15 @@ pub fn corner_metrics(
         }
     }
     sums.iter()
-        .map(|s| {
-            if s[3] > 0.0 {
-                invert([s[0] / s[3], s[1] / s[3], s[2] / s[3]]).unwrap_or([0.0; 3])
-            } else {
-                [0.0; 3]
-            }
-        })
+        .map(
+            |s| {
+                if s[3] > 0.0 {
+                    invert([s[0] / s[3], s[1] / s[3], s[2] / s[3]]).unwrap_or([0.0; 3])
+                } else {
+                    [0.0; 3]
+                }
+            },
+        )
         .collect()
 }
 

@@ -13,9 +13,7 @@ pub enum UvfeatError {
     EmptyMesh { vertices: usize, faces: usize },
 
     /// A position coordinate is NaN or infinite.
-    #[error(
-        "vertex {index} has a non-finite position {value:?} (NaN or Inf); clean the mesh first"
-    )]
+    #[error("vertex {index} has a non-finite position {value:?} (NaN or Inf); clean the mesh first")]
     NonFinitePosition { index: usize, value: [f64; 3] },
 
     /// A UV coordinate is NaN or infinite.
@@ -24,20 +22,11 @@ pub enum UvfeatError {
 
     /// A face refers to a vertex (or UV) that does not exist.
     #[error("face {face} refers to {what} {index}, but there are only {count}")]
-    IndexOutOfRange {
-        face: usize,
-        what: &'static str,
-        index: i64,
-        count: usize,
-    },
+    IndexOutOfRange { face: usize, what: &'static str, index: i64, count: usize },
 
     /// Arrays whose lengths must agree do not.
     #[error("{what}: expected {expected}, got {got}")]
-    ShapeMismatch {
-        what: &'static str,
-        expected: usize,
-        got: usize,
-    },
+    ShapeMismatch { what: &'static str, expected: usize, got: usize },
 
     /// The mesh has no UV coordinates.
     #[error("the mesh has no UV coordinates; give `uvs`, or let uvfeat build an atlas (xatlas)")]
@@ -51,10 +40,12 @@ pub enum UvfeatError {
     #[error("all {faces} faces have zero-area UV triangles: the UV map is degenerate")]
     AllUvDegenerate { faces: usize },
 
+    /// Every face has repeated corners or zero area, so the surface has nothing to measure.
+    #[error("all {faces} faces are degenerate (repeated corners or zero area): the mesh has no surface to measure")]
+    DegenerateMesh { faces: usize },
+
     /// A buffer resolution is zero or absurdly large.
-    #[error(
-        "resolution {resolution} is not valid: it must be a positive integer of at most {max}"
-    )]
+    #[error("resolution {resolution} is not valid: it must be a positive integer of at most {max}")]
     InvalidResolution { resolution: usize, max: usize },
 
     /// The requested buffers do not fit in the memory budget.
@@ -62,11 +53,7 @@ pub enum UvfeatError {
         "resolution {resolution} needs about {needed_mib} MiB of buffers, more than the {budget_mib} MiB \
          allowed; choose a smaller resolution"
     )]
-    ResolutionTooLarge {
-        resolution: usize,
-        needed_mib: u64,
-        budget_mib: u64,
-    },
+    ResolutionTooLarge { resolution: usize, needed_mib: u64, budget_mib: u64 },
 
     /// A new frame's positions do not match the mesh.
     #[error("new positions have {got} vertices, the mesh has {expected}")]

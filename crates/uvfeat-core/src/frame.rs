@@ -41,10 +41,7 @@ impl FaceMap {
         let inv = inv.inverse();
         let gradient = |v: [DVec3; 3]| {
             let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
-            (
-                e1 * inv.x_axis.x + e2 * inv.x_axis.y,
-                e1 * inv.y_axis.x + e2 * inv.y_axis.y,
-            )
+            (e1 * inv.x_axis.x + e2 * inv.x_axis.y, e1 * inv.y_axis.x + e2 * inv.y_axis.y)
         };
         let (pu, pv) = gradient(x);
         let (nu, nv) = gradient(n);
@@ -81,12 +78,7 @@ impl FaceMap {
     pub fn smooth_position(&self, uv: DVec2) -> DVec3 {
         let p = self.position(uv);
         let weights = self.barycentric(uv);
-        let lift: DVec3 = self
-            .corners
-            .iter()
-            .zip(weights)
-            .map(|(&(x, n), w)| n * (w * (x - p).dot(n)))
-            .sum();
+        let lift: DVec3 = self.corners.iter().zip(weights).map(|(&(x, n), w)| n * (w * (x - p).dot(n))).sum();
         p + 0.5 * lift
     }
 
@@ -153,29 +145,17 @@ impl Frame {
         self.face_maps
             .par_iter_mut()
             .zip(self.distortion.par_iter_mut())
-            .zip(
-                topology
-                    .faces
-                    .par_iter()
-                    .zip(&topology.corner_uvs)
-                    .zip(&topology.face_chart),
-            )
+            .zip(topology.faces.par_iter().zip(&topology.corner_uvs).zip(&topology.face_chart))
             .for_each(|((map, distortion), ((tri, uv), &chart))| {
                 let gather = |values: &[DVec3]| tri.map(|v| values[v as usize]);
-                *map = (chart >= 0)
-                    .then(|| FaceMap::new(gather(&positions), gather(&normals), *uv))
-                    .flatten();
-                *distortion = map.map_or(ZERO_DISTORTION, |m| {
-                    Distortion::from_metric(m.jacobian.metric())
-                });
+                *map = (chart >= 0).then(|| FaceMap::new(gather(&positions), gather(&normals), *uv)).flatten();
+                *distortion = map.map_or(ZERO_DISTORTION, |m| Distortion::from_metric(m.jacobian.metric()));
             });
         let face_maps = &self.face_maps;
-        self.corner_metrics =
-            corner_metrics(topology, |f| face_maps[f].map(|m| m.jacobian.metric()));
+        self.corner_metrics = corner_metrics(topology, |f| face_maps[f].map(|m| m.jacobian.metric()));
         let metrics = &self.corner_metrics;
-        self.seam_maps = seam_maps(topology, |face, corner| {
-            metrics[topology.corner_groups[face as usize][corner] as usize]
-        });
+        self.seam_maps =
+            seam_maps(topology, |face, corner| metrics[topology.corner_groups[face as usize][corner] as usize]);
         self.positions = positions;
         self.normals = normals;
         Ok(())
@@ -210,11 +190,7 @@ impl Frame {
 const SLIVER_ANISOTROPY: f64 = 2.0;
 
 /// Distortion of faces without a usable Jacobian.
-const ZERO_DISTORTION: Distortion = Distortion {
-    sigma1: 0.0,
-    sigma2: 0.0,
-    theta: 0.0,
-};
+const ZERO_DISTORTION: Distortion = Distortion { sigma1: 0.0, sigma2: 0.0, theta: 0.0 };
 
 #[cfg(test)]
 mod tests {
@@ -224,11 +200,7 @@ mod tests {
     fn affine_map_is_recovered_exactly() {
         // P(u, v) = (2u + v, 3v, u - v)
         let p = |t: DVec2| DVec3::new(2.0 * t.x + t.y, 3.0 * t.y, t.x - t.y);
-        let uv = [
-            DVec2::new(0.1, 0.2),
-            DVec2::new(0.7, 0.3),
-            DVec2::new(0.2, 0.9),
-        ];
+        let uv = [DVec2::new(0.1, 0.2), DVec2::new(0.7, 0.3), DVec2::new(0.2, 0.9)];
         let map = FaceMap::new(uv.map(p), [DVec3::Z; 3], uv).unwrap();
         assert!((map.jacobian.pu - DVec3::new(2.0, 0.0, 1.0)).length() < 1e-12);
         assert!((map.jacobian.pv - DVec3::new(1.0, 3.0, -1.0)).length() < 1e-12);

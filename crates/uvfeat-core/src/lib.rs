@@ -22,6 +22,7 @@ pub mod lookup;
 pub mod mesh;
 pub mod output;
 pub mod raster;
+pub mod reference;
 pub mod relocation;
 pub mod sampling;
 pub mod shapes;

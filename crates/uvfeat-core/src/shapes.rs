@@ -59,8 +59,7 @@ impl Grid {
         for j in 0..=nv {
             for i in 0..=nu {
                 let t = DVec2::new(i as f64 / nu as f64, j as f64 / nv as f64);
-                mesh.uvs
-                    .push((DVec2::splat(MARGIN) + t * (1.0 - 2.0 * MARGIN)).to_array());
+                mesh.uvs.push((DVec2::splat(MARGIN) + t * (1.0 - 2.0 * MARGIN)).to_array());
             }
         }
         for j in 0..nv {
@@ -74,10 +73,8 @@ impl Grid {
                     &[[0, 1, 2], [0, 2, 3]]
                 };
                 for tri in tris {
-                    mesh.faces
-                        .push(tri.map(|k| vertex[corners[k].1][corners[k].0]));
-                    mesh.uv_faces
-                        .push(tri.map(|k| uv_index(corners[k].0, corners[k].1)));
+                    mesh.faces.push(tri.map(|k| vertex[corners[k].1][corners[k].0]));
+                    mesh.uv_faces.push(tri.map(|k| uv_index(corners[k].0, corners[k].1)));
                 }
             }
         }
@@ -93,22 +90,13 @@ pub fn uv_sphere(radius: f64, n_lon: usize, n_lat: usize) -> ShapeMesh {
 
 /// Axis-aligned ellipsoid with semi-axes `axes`, parameterised like [`uv_sphere`].
 pub fn ellipsoid(axes: [f64; 3], n_lon: usize, n_lat: usize) -> ShapeMesh {
-    let grid = Grid {
-        nu: n_lon.max(3),
-        nv: n_lat.max(2),
-        wrap_u: true,
-        poles: true,
-    };
+    let grid = Grid { nu: n_lon.max(3), nv: n_lat.max(2), wrap_u: true, poles: true };
     grid.build(|u, v| {
         let (lon, lat) = (TAU * u, PI * (v - 0.5));
         if v == 0.0 || v == 1.0 {
             return DVec3::new(0.0, 0.0, lat.signum() * axes[2]);
         }
-        DVec3::new(
-            axes[0] * lat.cos() * lon.cos(),
-            axes[1] * lat.cos() * lon.sin(),
-            axes[2] * lat.sin(),
-        )
+        DVec3::new(axes[0] * lat.cos() * lon.cos(), axes[1] * lat.cos() * lon.sin(), axes[2] * lat.sin())
     })
 }
 
@@ -116,12 +104,7 @@ pub fn ellipsoid(axes: [f64; 3], n_lon: usize, n_lat: usize) -> ShapeMesh {
 /// axis, `v` around the tube (`v = 0` on the outer equator). Both directions are self-adjacent
 /// seams of one chart. `H = (R + 2a cos v) / (2a (R + a cos v))`, `K = cos v / (a (R + a cos v))`.
 pub fn torus(major: f64, minor: f64, n_u: usize, n_v: usize) -> ShapeMesh {
-    let grid = Grid {
-        nu: n_u.max(3),
-        nv: n_v.max(3),
-        wrap_u: true,
-        poles: false,
-    };
+    let grid = Grid { nu: n_u.max(3), nv: n_v.max(3), wrap_u: true, poles: false };
     let mut mesh = grid.build(|u, v| {
         let (phi, psi) = (TAU * u, TAU * v);
         let ring = major + minor * psi.cos();
@@ -144,30 +127,14 @@ pub fn torus(major: f64, minor: f64, n_u: usize, n_v: usize) -> ShapeMesh {
 /// Open cylinder of `radius` and `height` around the z axis (one chart, one self-adjacent seam,
 /// two border loops). `H = 1/(2 radius)`, `K = 0`.
 pub fn cylinder(radius: f64, height: f64, n_around: usize, n_along: usize) -> ShapeMesh {
-    let grid = Grid {
-        nu: n_around.max(3),
-        nv: n_along.max(1),
-        wrap_u: true,
-        poles: false,
-    };
-    grid.build(|u, v| {
-        DVec3::new(
-            radius * (TAU * u).cos(),
-            radius * (TAU * u).sin(),
-            height * (v - 0.5),
-        )
-    })
+    let grid = Grid { nu: n_around.max(3), nv: n_along.max(1), wrap_u: true, poles: false };
+    grid.build(|u, v| DVec3::new(radius * (TAU * u).cos(), radius * (TAU * u).sin(), height * (v - 0.5)))
 }
 
 /// Square `[0, size]^2` in the plane `z = 0` (normal +z) with the affine parameterisation
 /// `(x, y) = size (u', v')` (one chart, border all around).
 pub fn plane(size: f64, n: usize) -> ShapeMesh {
-    let grid = Grid {
-        nu: n.max(1),
-        nv: n.max(1),
-        wrap_u: false,
-        poles: false,
-    };
+    let grid = Grid { nu: n.max(1), nv: n.max(1), wrap_u: false, poles: false };
     grid.build(|u, v| DVec3::new(size * u, size * v, 0.0))
 }
 
@@ -177,11 +144,7 @@ pub fn plane(size: f64, n: usize) -> ShapeMesh {
 pub fn split_plane(n: usize, mirrored: bool) -> ShapeMesh {
     let mut mesh = plane(1.0, n.max(2) & !1);
     let rotation = DVec2::from_angle(PI / 6.0);
-    let (flip, offset) = if mirrored {
-        (-1.0, DVec2::new(0.95, 0.35))
-    } else {
-        (1.0, DVec2::new(0.7, 0.35))
-    };
+    let (flip, offset) = if mirrored { (-1.0, DVec2::new(0.95, 0.35)) } else { (1.0, DVec2::new(0.7, 0.35)) };
     let left = |p: [f64; 3]| [0.05 + 0.8 * p[0], 0.05 + 0.9 * p[1]];
     let right = |p: [f64; 3]| {
         let local = DVec2::new(flip * 0.5 * (p[0] - 0.5), 0.3 * p[1]);

@@ -7,10 +7,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 /// Rows of an `(n, N)` C-contiguous array as fixed-size arrays.
-pub fn rows<T: Element + Copy, const N: usize>(
-    array: &PyReadonlyArray2<'_, T>,
-    name: &str,
-) -> PyResult<Vec<[T; N]>> {
+pub fn rows<T: Element + Copy, const N: usize>(array: &PyReadonlyArray2<'_, T>, name: &str) -> PyResult<Vec<[T; N]>> {
     let shape = array.shape();
     if shape[1] != N || !array.is_c_contiguous() {
         return Err(PyValueError::new_err(format!(
@@ -18,10 +15,7 @@ pub fn rows<T: Element + Copy, const N: usize>(
         )));
     }
     let flat = array.as_slice()?;
-    Ok(flat
-        .chunks_exact(N)
-        .map(|c| std::array::from_fn(|k| c[k]))
-        .collect())
+    Ok(flat.chunks_exact(N).map(|c| std::array::from_fn(|k| c[k])).collect())
 }
 
 /// A new NumPy array of `shape` from flat row-major data.
@@ -30,8 +24,7 @@ pub fn to_numpy<'py, T: Element>(
     data: Vec<T>,
     shape: &[usize],
 ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
-    let array = Array::from_shape_vec(IxDyn(shape), data)
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let array = Array::from_shape_vec(IxDyn(shape), data).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
 }
 

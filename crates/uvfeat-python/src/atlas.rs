@@ -22,17 +22,12 @@ fn precision_from(name: &str) -> PyResult<Precision> {
     match name {
         "f32" => Ok(Precision::F32),
         "f16" => Ok(Precision::F16),
-        other => Err(PyValueError::new_err(format!(
-            "precision must be 'f32' or 'f16', got {other:?}"
-        ))),
+        other => Err(PyValueError::new_err(format!("precision must be 'f32' or 'f16', got {other:?}"))),
     }
 }
 
 fn positions_of(array: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<DVec3>> {
-    Ok(rows::<f64, 3>(array, "positions")?
-        .into_iter()
-        .map(DVec3::from_array)
-        .collect())
+    Ok(rows::<f64, 3>(array, "positions")?.into_iter().map(DVec3::from_array).collect())
 }
 
 type Matrix = [[f64; 2]; 2];
@@ -60,11 +55,7 @@ impl PyAtlas {
         precision: &str,
         memory_budget: u64,
     ) -> PyResult<Self> {
-        let options = AtlasOptions {
-            resolution,
-            precision: precision_from(precision)?,
-            memory_budget,
-        };
+        let options = AtlasOptions { resolution, precision: precision_from(precision)?, memory_budget };
         let positions = positions_of(&positions)?;
         let topology = topology.inner.clone();
         let inner = guarded(py, || Atlas::new(topology, &positions, &options))?;
@@ -129,15 +120,7 @@ impl PyAtlas {
 
     #[getter]
     fn border<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<bool>>> {
-        self.texel_map(
-            py,
-            self.inner
-                .coverage
-                .border_side
-                .iter()
-                .map(|&s| s >= 0)
-                .collect(),
-        )
+        self.texel_map(py, self.inner.coverage.border_side.iter().map(|&s| s >= 0).collect())
     }
 
     #[getter]
@@ -177,26 +160,10 @@ impl PyAtlas {
         target: [f64; 2],
         max_jumps: u32,
     ) -> (&'static str, i32, Option<[f64; 2]>, Option<Matrix>, u32) {
-        match locate(
-            &self.inner,
-            DVec2::from_array(start),
-            chart,
-            DVec2::from_array(target),
-            max_jumps,
-        ) {
-            Located::Inside {
-                chart,
-                uv,
-                m_path,
-                jumps,
-                ..
-            } => (
-                "inside",
-                chart,
-                Some(uv.to_array()),
-                Some(matrix(m_path)),
-                jumps,
-            ),
+        match locate(&self.inner, DVec2::from_array(start), chart, DVec2::from_array(target), max_jumps) {
+            Located::Inside { chart, uv, m_path, jumps, .. } => {
+                ("inside", chart, Some(uv.to_array()), Some(matrix(m_path)), jumps)
+            }
             Located::Border => ("border", -1, None, None, 0),
             Located::Missing => ("missing", -1, None, None, 0),
         }
@@ -204,27 +171,18 @@ impl PyAtlas {
 
     /// Maps `uv` in a border texel of `chart` across its seam: `(chart, uv, M, side)` or None.
     fn cross_seam(&self, uv: [f64; 2], chart: i32) -> Option<(i32, [f64; 2], Matrix, usize)> {
-        cross_seam(&self.inner, DVec2::from_array(uv), chart)
-            .map(|c| (c.chart, c.uv.to_array(), matrix(c.m), c.side))
+        cross_seam(&self.inner, DVec2::from_array(uv), chart).map(|c| (c.chart, c.uv.to_array(), matrix(c.m), c.side))
     }
 
     /// The transition map of boundary side `side`: `(origin_from, origin_to, M)` or None.
     fn seam_map(&self, side: usize) -> Option<([f64; 2], [f64; 2], Matrix)> {
         let map = (*self.inner.frame.seam_maps.get(side)?)?;
-        Some((
-            map.origin_from.to_array(),
-            map.origin_to.to_array(),
-            matrix(map.m),
-        ))
+        Some((map.origin_from.to_array(), map.origin_to.to_array(), matrix(map.m)))
     }
 
     /// The reverse side of boundary side `side` (-1 when it is not a seam).
     fn reverse_side(&self, side: usize) -> i32 {
-        self.inner
-            .topology
-            .sides
-            .get(side)
-            .map_or(-1, |s| s.reverse)
+        self.inner.topology.sides.get(side).map_or(-1, |s| s.reverse)
     }
 
     /// Surface position, normal and face at `uv` in `chart` (exact triangle lookup), or None.
@@ -240,30 +198,17 @@ impl PyAtlas {
         &self.inner
     }
 
-    fn texel_map<'py, T: numpy::Element>(
-        &self,
-        py: Python<'py>,
-        data: Vec<T>,
-    ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+    fn texel_map<'py, T: numpy::Element>(&self, py: Python<'py>, data: Vec<T>) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
         let r = self.inner.resolution();
         to_numpy(py, data, &[r, r])
     }
 
-    fn vector_buffer<'py>(
-        &self,
-        py: Python<'py>,
-        data: &[[f32; 3]],
-    ) -> PyResult<Bound<'py, PyAny>> {
+    fn vector_buffer<'py>(&self, py: Python<'py>, data: &[[f32; 3]]) -> PyResult<Bound<'py, PyAny>> {
         let r = self.inner.resolution();
         let flat = flatten(data);
         Ok(match self.inner.precision {
             Precision::F32 => to_numpy(py, flat, &[r, r, 3])?.into_any(),
-            Precision::F16 => to_numpy(
-                py,
-                flat.into_iter().map(f16::from_f32).collect(),
-                &[r, r, 3],
-            )?
-            .into_any(),
+            Precision::F16 => to_numpy(py, flat.into_iter().map(f16::from_f32).collect(), &[r, r, 3])?.into_any(),
         })
     }
 }

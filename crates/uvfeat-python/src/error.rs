@@ -22,7 +22,8 @@ pub fn to_py(err: UvfeatError) -> PyErr {
         | UvfeatError::NonFinitePosition { .. }
         | UvfeatError::IndexOutOfRange { .. }
         | UvfeatError::ShapeMismatch { .. }
-        | UvfeatError::FrameVertexCount { .. } => InvalidMeshError::new_err(msg),
+        | UvfeatError::FrameVertexCount { .. }
+        | UvfeatError::DegenerateMesh { .. } => InvalidMeshError::new_err(msg),
         UvfeatError::ResolutionTooLarge { .. } => ResolutionTooLargeError::new_err(msg),
         UvfeatError::InvalidResolution { .. }
         | UvfeatError::InvalidParameter { .. }
@@ -32,10 +33,7 @@ pub fn to_py(err: UvfeatError) -> PyErr {
 
 /// Runs a core call with the GIL released, turning errors into exceptions and a panic into a
 /// `RuntimeError` (a panic must never reach Python as a `BaseException`).
-pub fn guarded<T: Send>(
-    py: Python<'_>,
-    f: impl FnOnce() -> Result<T, UvfeatError> + Send,
-) -> PyResult<T> {
+pub fn guarded<T: Send>(py: Python<'_>, f: impl FnOnce() -> Result<T, UvfeatError> + Send) -> PyResult<T> {
     let outcome = py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)));
     match outcome {
         Ok(result) => result.map_err(to_py),
@@ -45,9 +43,7 @@ pub fn guarded<T: Send>(
                 .map(|s| s.to_string())
                 .or_else(|| payload.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "unknown panic".into());
-            Err(PyRuntimeError::new_err(format!(
-                "internal error in uvfeat (please report): {what}"
-            )))
+            Err(PyRuntimeError::new_err(format!("internal error in uvfeat (please report): {what}")))
         }
     }
 }

@@ -13,18 +13,21 @@ use uvfeat_core::relocation::Relocation;
 use uvfeat_core::sampling::{neighbourhood_tile, Criterion};
 use uvfeat_core::UvfeatError;
 
-fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
-    options
-        .iter()
-        .find(|(k, _)| *k == value)
-        .map(|(_, v)| *v)
-        .ok_or_else(|| {
-            let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
-            to_py(UvfeatError::InvalidParameter {
-                name,
-                reason: format!("{value:?} is not one of {valid:?}"),
-            })
-        })
+pub(crate) fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
+    options.iter().find(|(k, _)| *k == value).map(|(_, v)| *v).ok_or_else(|| {
+        let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
+        to_py(UvfeatError::InvalidParameter { name, reason: format!("{value:?} is not one of {valid:?}") })
+    })
+}
+
+/// Features from their public names.
+pub(crate) fn feature_list(names: &[String]) -> PyResult<Vec<Feature>> {
+    names.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)
+}
+
+/// The volume weighting of its public name.
+pub(crate) fn volume_weighting_named(value: &str) -> PyResult<VolumeWeighting> {
+    choice("volume_weighting", value, &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)])
 }
 
 /// Builds and validates core settings from the Python keyword arguments.
@@ -51,12 +54,7 @@ pub fn compute_settings(
     flat_tol: f64,
     standard_error: bool,
 ) -> PyResult<PySettings> {
-    let features = features
-        .iter()
-        .map(|f| Feature::from_name(f))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(to_py)?;
-    let mut s = ComputeSettings::new(features, radius);
+    let mut s = ComputeSettings::new(feature_list(&features)?, radius);
     s.samples = samples;
     s.resolution = compute_resolution;
     s.adaptive = adaptive;
@@ -65,35 +63,15 @@ pub fn compute_settings(
     s.margin = margin;
     s.grow_margin = grow_margin;
     s.max_jumps = max_jumps;
-    s.relocation = choice(
-        "relocation",
-        relocation,
-        &[("walk", Relocation::Walk), ("march", Relocation::March)],
-    )?;
-    s.criterion = choice(
-        "criterion",
-        criterion,
-        &[
-            ("euclidean", Criterion::Euclidean),
-            ("geodesic", Criterion::Geodesic),
-        ],
-    )?;
+    s.relocation = choice("relocation", relocation, &[("walk", Relocation::Walk), ("march", Relocation::March)])?;
+    s.criterion =
+        choice("criterion", criterion, &[("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)])?;
     s.gaussian_method = choice(
         "gaussian_method",
         gaussian_method,
-        &[
-            ("moments", GaussianMethod::Moments),
-            ("geodesic_area", GaussianMethod::GeodesicArea),
-        ],
+        &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
     )?;
-    s.volume_weighting = choice(
-        "volume_weighting",
-        volume_weighting,
-        &[
-            ("distance", VolumeWeighting::Distance),
-            ("uniform", VolumeWeighting::Uniform),
-        ],
-    )?;
+    s.volume_weighting = volume_weighting_named(volume_weighting)?;
     s.rho_min_fraction = rho_min;
     s.flat_tol = flat_tol;
     s.standard_errors = standard_error;
@@ -132,16 +110,8 @@ impl PyFeatureMaps {
     }
 
     /// (W_c, W_c) standard errors of the k-th feature, or None when not requested.
-    fn standard_errors<'py>(
-        &self,
-        py: Python<'py>,
-        k: usize,
-    ) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
-        self.inner
-            .standard_errors
-            .as_ref()
-            .map(|e| self.map(py, e[k].clone()))
-            .transpose()
+    fn standard_errors<'py>(&self, py: Python<'py>, k: usize) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
+        self.inner.standard_errors.as_ref().map(|e| self.map(py, e[k].clone())).transpose()
     }
 
     #[getter]
@@ -190,29 +160,15 @@ impl PyFeatureMaps {
         atlas: &PyAtlas,
         query: &str,
     ) -> PyResult<Vec<Bound<'py, PyArrayDyn<f32>>>> {
-        let query = choice(
-            "query",
-            query,
-            &[
-                ("texture", VertexQuery::Texture),
-                ("direct", VertexQuery::Direct),
-            ],
-        )?;
+        let query = choice("query", query, &[("texture", VertexQuery::Texture), ("direct", VertexQuery::Direct)])?;
         let (maps, settings, core) = (&self.inner, &self.settings, atlas.core());
         let values = guarded(py, || Ok(per_vertex(core, maps, settings, query)))?;
-        values
-            .into_iter()
-            .map(|v| to_numpy(py, v.clone(), &[v.len()]))
-            .collect()
+        values.into_iter().map(|v| to_numpy(py, v.clone(), &[v.len()])).collect()
     }
 }
 
 impl PyFeatureMaps {
-    fn map<'py, T: numpy::Element>(
-        &self,
-        py: Python<'py>,
-        data: Vec<T>,
-    ) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
+    fn map<'py, T: numpy::Element>(&self, py: Python<'py>, data: Vec<T>) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
         let w = self.inner.resolution;
         to_numpy(py, data, &[w, w])
     }
@@ -220,17 +176,10 @@ impl PyFeatureMaps {
 
 /// Runs a feature computation on an atlas (GIL released, parallel).
 #[pyfunction]
-pub fn compute_maps(
-    py: Python<'_>,
-    atlas: &PyAtlas,
-    settings: &PySettings,
-) -> PyResult<PyFeatureMaps> {
+pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> PyResult<PyFeatureMaps> {
     let (core, s) = (atlas.core(), &settings.inner);
     let inner = guarded(py, || FeatureMaps::compute(core, s))?;
-    Ok(PyFeatureMaps {
-        inner,
-        settings: settings.inner.clone(),
-    })
+    Ok(PyFeatureMaps { inner, settings: settings.inner.clone() })
 }
 
 type TileArrays<'py> = (

@@ -5,6 +5,7 @@ mod arrays;
 mod atlas;
 mod error;
 mod features;
+mod reference;
 mod shapes;
 mod topology;
 
@@ -22,5 +23,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(features::compute_settings, m)?)?;
     m.add_function(wrap_pyfunction!(features::compute_maps, m)?)?;
     m.add_function(wrap_pyfunction!(features::neighbourhood_tile_arrays, m)?)?;
+    m.add_class::<reference::PyReferenceMesh>()?;
     Ok(())
 }

@@ -25,21 +25,13 @@ impl PyTopology {
         uv_faces: PyReadonlyArray2<'_, i64>,
         weld_tolerance: f64,
     ) -> PyResult<Self> {
-        let (p, f) = (
-            rows::<f64, 3>(&positions, "positions")?,
-            rows::<i64, 3>(&faces, "faces")?,
-        );
-        let (uv, uvf) = (
-            rows::<f64, 2>(&uvs, "uvs")?,
-            rows::<i64, 3>(&uv_faces, "uv_faces")?,
-        );
+        let (p, f) = (rows::<f64, 3>(&positions, "positions")?, rows::<i64, 3>(&faces, "faces")?);
+        let (uv, uvf) = (rows::<f64, 2>(&uvs, "uvs")?, rows::<i64, 3>(&uv_faces, "uv_faces")?);
         let inner = guarded(py, || {
             let mesh = TriangleMesh::new(&p, &f, &uv, &uvf)?;
             Topology::build(&mesh, weld_tolerance)
         })?;
-        Ok(Self {
-            inner: Arc::new(inner),
-        })
+        Ok(Self { inner: Arc::new(inner) })
     }
 
     #[getter]
@@ -55,12 +47,7 @@ impl PyTopology {
     /// Geometric (welded) vertex id of every input vertex.
     #[getter]
     fn vertex_ids<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<i64>>> {
-        let ids = self
-            .inner
-            .vertex_ids
-            .iter()
-            .map(|&v| i64::from(v))
-            .collect::<Vec<_>>();
+        let ids = self.inner.vertex_ids.iter().map(|&v| i64::from(v)).collect::<Vec<_>>();
         let n = ids.len();
         to_numpy(py, ids, &[n])
     }
@@ -68,11 +55,7 @@ impl PyTopology {
     /// Chart id of every face (-1 for zero-area UV triangles).
     #[getter]
     fn face_chart<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<i32>>> {
-        to_numpy(
-            py,
-            self.inner.face_chart.clone(),
-            &[self.inner.face_chart.len()],
-        )
+        to_numpy(py, self.inner.face_chart.clone(), &[self.inner.face_chart.len()])
     }
 
     #[getter]

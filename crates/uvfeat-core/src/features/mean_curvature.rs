@@ -18,12 +18,7 @@ use super::statistics::{VolumeWeighting, WeightedSums};
 /// measured: larger `r` smooths more (H at scale `r`).
 ///
 /// Integrand for adaptive sampling: `g = -(8/(3r)) sin(alpha)`, unit `1/r`.
-pub fn mean_curvature(
-    elevation: &WeightedSums,
-    radial: &WeightedSums,
-    radius: f64,
-    weighting: VolumeWeighting,
-) -> f64 {
+pub fn mean_curvature(elevation: &WeightedSums, radial: &WeightedSums, radius: f64, weighting: VolumeWeighting) -> f64 {
     -8.0 / (3.0 * radius) * elevation.mean() * radial_correction(radial, weighting)
 }
 

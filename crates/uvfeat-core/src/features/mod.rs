@@ -14,8 +14,8 @@ mod volume_invariant;
 pub use bending_energy::bending_energy;
 pub use curvedness::curvedness;
 pub use gaussian_curvature::{
-    gaussian_curvature_geodesic_area, gaussian_curvature_geodesic_area_error,
-    gaussian_curvature_moments, GaussianMethod,
+    gaussian_curvature_geodesic_area, gaussian_curvature_geodesic_area_error, gaussian_curvature_moments,
+    GaussianMethod,
 };
 pub use mean_curvature::{mean_curvature, mean_curvature_error, radial_correction};
 pub use open_volume::{ball_volume, open_volume, open_volume_error};
@@ -83,16 +83,10 @@ impl Feature {
     /// # Errors
     /// [`UvfeatError::InvalidParameter`] listing the valid names.
     pub fn from_name(name: &str) -> Result<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|f| f.name() == name)
-            .ok_or_else(|| UvfeatError::InvalidParameter {
-                name: "feature",
-                reason: format!(
-                    "unknown feature {name:?}; valid: {}",
-                    Self::ALL.map(Feature::name).join(", ")
-                ),
-            })
+        Self::ALL.into_iter().find(|f| f.name() == name).ok_or_else(|| UvfeatError::InvalidParameter {
+            name: "feature",
+            reason: format!("unknown feature {name:?}; valid: {}", Self::ALL.map(Feature::name).join(", ")),
+        })
     }
 
     /// Position in [`Feature::ALL`].
@@ -157,17 +151,11 @@ pub fn estimate(stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> Est
 /// The standard error of `feature`'s Monte Carlo estimate relative to its natural unit (`1/r`
 /// for curvatures, `1/r^2` for K and bending energy, `r^3` for volumes), from the stage-1 sums
 /// (SPEC §1.8): stage 2 runs where this exceeds `tau`.
-pub fn relative_standard_error(
-    feature: Feature,
-    stats: &NeighbourhoodStats,
-    settings: &EstimatorSettings,
-) -> f64 {
+pub fn relative_standard_error(feature: Feature, stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> f64 {
     let r = settings.radius;
     match feature {
         Feature::MeanCurvature => mean_curvature_error(&stats.elevation, r) * r,
-        Feature::OpenVolume | Feature::VolumeInvariant => {
-            open_volume_error(&stats.elevation, r) / r.powi(3)
-        }
+        Feature::OpenVolume | Feature::VolumeInvariant => open_volume_error(&stats.elevation, r) / r.powi(3),
         Feature::BendingEnergy => stats.bending.standard_error() * r * r,
         Feature::GaussianCurvature if settings.gaussian_method == GaussianMethod::GeodesicArea => {
             gaussian_curvature_geodesic_area_error(&stats.geodesic_disk, r) * r * r
@@ -188,10 +176,7 @@ mod tests {
             assert_eq!(Feature::ALL[f.index()], f);
         }
         let err = Feature::from_name("mean").unwrap_err().to_string();
-        assert!(
-            err.contains("mean_curvature") && err.contains("shape_index"),
-            "{err}"
-        );
+        assert!(err.contains("mean_curvature") && err.contains("shape_index"), "{err}");
     }
 
     #[test]

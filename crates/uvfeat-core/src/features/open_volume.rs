@@ -12,12 +12,7 @@ use std::f64::consts::PI;
 /// moment (`sin(alpha) ~ -kappa rho / 2`), which makes the unit sphere exact for any pattern.
 ///
 /// Range `[0, 4 pi r^3 / 3]`; plane `2 pi r^3 / 3`; convex regions less. Units length^3.
-pub fn open_volume(
-    elevation: &WeightedSums,
-    radial: &WeightedSums,
-    radius: f64,
-    weighting: VolumeWeighting,
-) -> f64 {
+pub fn open_volume(elevation: &WeightedSums, radial: &WeightedSums, radius: f64, weighting: VolumeWeighting) -> f64 {
     ball_volume(radius) * (1.0 - elevation.mean() * radial_correction(radial, weighting)) / 2.0
 }
 

@@ -22,11 +22,7 @@ pub enum EdgeLink {
 /// The links of every face, from its geometric vertex ids, its chart (`-1` = degenerate, no links)
 /// and the boundary sides; every other edge of a charted face is shared by exactly two faces of
 /// the same chart (that is what made it interior).
-pub(crate) fn face_links(
-    faces: &[[u32; 3]],
-    face_chart: &[i32],
-    sides: &[BoundarySide],
-) -> Vec<[EdgeLink; 3]> {
+pub(crate) fn face_links(faces: &[[u32; 3]], face_chart: &[i32], sides: &[BoundarySide]) -> Vec<[EdgeLink; 3]> {
     let mut links = vec![[EdgeLink::Closed; 3]; faces.len()];
     for (i, side) in sides.iter().enumerate() {
         links[side.face as usize][side.local as usize] = EdgeLink::Side(i as u32);
@@ -38,16 +34,10 @@ pub(crate) fn face_links(
         .filter(|&(f, _)| face_chart[f] >= 0)
         .flat_map_iter(|(f, tri)| {
             let side_edges = links[f];
-            (0..3u8)
-                .filter(move |&k| side_edges[k as usize] == EdgeLink::Closed)
-                .map(move |k| {
-                    let (a, b) = (tri[k as usize], tri[(k as usize + 1) % 3]);
-                    (
-                        (u64::from(a.min(b)) << 32) | u64::from(a.max(b)),
-                        f as u32,
-                        k,
-                    )
-                })
+            (0..3u8).filter(move |&k| side_edges[k as usize] == EdgeLink::Closed).map(move |k| {
+                let (a, b) = (tri[k as usize], tri[(k as usize + 1) % 3]);
+                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), f as u32, k)
+            })
         })
         .collect();
     half_edges.par_sort_unstable();

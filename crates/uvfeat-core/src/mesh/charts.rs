@@ -7,11 +7,7 @@ use super::weld::{find, union};
 ///
 /// # Returns
 /// `(face_chart, n_charts)`.
-pub(crate) fn chart_ids(
-    n_faces: usize,
-    interior_pairs: &[(u32, u32)],
-    excluded: &[bool],
-) -> (Vec<i32>, usize) {
+pub(crate) fn chart_ids(n_faces: usize, interior_pairs: &[(u32, u32)], excluded: &[bool]) -> (Vec<i32>, usize) {
     let mut parent: Vec<u32> = (0..n_faces as u32).collect();
     for &(a, b) in interior_pairs {
         union(&mut parent, a, b);

@@ -19,14 +19,7 @@ pub(crate) fn corner_groups(
         .enumerate()
         .filter(|&(f, _)| face_chart[f] >= 0)
         .flat_map_iter(|(f, (tri, uv))| {
-            (0..3).map(move |k| {
-                (
-                    tri[k],
-                    uv[k].x.to_bits(),
-                    uv[k].y.to_bits(),
-                    (f * 3 + k) as u32,
-                )
-            })
+            (0..3).map(move |k| (tri[k], uv[k].x.to_bits(), uv[k].y.to_bits(), (f * 3 + k) as u32))
         })
         .collect();
     corners.par_sort_unstable();

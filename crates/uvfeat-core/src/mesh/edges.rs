@@ -50,11 +50,7 @@ pub(crate) struct EdgeClasses {
 ///
 /// Two faces are UV-continuous across an edge when both endpoints carry the same UV (compared
 /// exactly) on both sides (SPEC §1.2.2–§1.2.3).
-pub(crate) fn classify_edges(
-    faces: &[[u32; 3]],
-    corner_uvs: &[[DVec2; 3]],
-    degenerate: &[bool],
-) -> EdgeClasses {
+pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], degenerate: &[bool]) -> EdgeClasses {
     let mut sides: Vec<(u64, FaceSide)> = faces
         .par_iter()
         .enumerate()
@@ -62,38 +58,20 @@ pub(crate) fn classify_edges(
             (0..3u8).map(move |local| {
                 let (a, b) = (tri[local as usize], tri[(local as usize + 1) % 3]);
                 let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-                (
-                    key,
-                    FaceSide {
-                        face: f as u32,
-                        local,
-                    },
-                )
+                (key, FaceSide { face: f as u32, local })
             })
         })
         .collect();
     sides.par_sort_unstable_by_key(|(key, side)| (*key, side.face, side.local));
 
-    let mut classes = EdgeClasses {
-        interior_pairs: Vec::new(),
-        boundary: Vec::new(),
-        counts: EdgeCounts::default(),
-    };
+    let mut classes = EdgeClasses { interior_pairs: Vec::new(), boundary: Vec::new(), counts: EdgeCounts::default() };
     for group in sides.chunk_by(|x, y| x.0 == y.0) {
-        let live: Vec<FaceSide> = group
-            .iter()
-            .map(|(_, s)| *s)
-            .filter(|s| !degenerate[s.face as usize])
-            .collect();
+        let live: Vec<FaceSide> = group.iter().map(|(_, s)| *s).filter(|s| !degenerate[s.face as usize]).collect();
         let had_degenerate = live.len() < group.len();
         match live.as_slice() {
             [] => {}
             [only] => {
-                let kind = if had_degenerate {
-                    SideKind::DegenerateNeighbour
-                } else {
-                    SideKind::Border
-                };
+                let kind = if had_degenerate { SideKind::DegenerateNeighbour } else { SideKind::Border };
                 classes.counts.border += 1;
                 classes.boundary.push((*only, kind));
             }
@@ -103,27 +81,13 @@ pub(crate) fn classify_edges(
                     classes.interior_pairs.push((x.face, y.face));
                 } else {
                     classes.counts.seam += 1;
-                    classes.boundary.push((
-                        *x,
-                        SideKind::Seam {
-                            other_face: y.face,
-                            other_local: y.local,
-                        },
-                    ));
-                    classes.boundary.push((
-                        *y,
-                        SideKind::Seam {
-                            other_face: x.face,
-                            other_local: x.local,
-                        },
-                    ));
+                    classes.boundary.push((*x, SideKind::Seam { other_face: y.face, other_local: y.local }));
+                    classes.boundary.push((*y, SideKind::Seam { other_face: x.face, other_local: x.local }));
                 }
             }
             many => {
                 classes.counts.non_manifold += 1;
-                classes
-                    .boundary
-                    .extend(many.iter().map(|s| (*s, SideKind::NonManifold)));
+                classes.boundary.extend(many.iter().map(|s| (*s, SideKind::NonManifold)));
             }
         }
     }
@@ -131,25 +95,15 @@ pub(crate) fn classify_edges(
 }
 
 /// UV of geometric vertex `vertex` in `face` (the vertex must be a corner of the face).
-pub(crate) fn uv_of_vertex(
-    faces: &[[u32; 3]],
-    corner_uvs: &[[DVec2; 3]],
-    face: u32,
-    vertex: u32,
-) -> DVec2 {
-    let corner = faces[face as usize]
-        .iter()
-        .position(|&v| v == vertex)
-        .unwrap_or(0);
+pub(crate) fn uv_of_vertex(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], face: u32, vertex: u32) -> DVec2 {
+    let corner = faces[face as usize].iter().position(|&v| v == vertex).unwrap_or(0);
     corner_uvs[face as usize][corner]
 }
 
 fn uv_continuous(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], x: FaceSide, y: FaceSide) -> bool {
     let tri = faces[x.face as usize];
     let (a, b) = (tri[x.local as usize], tri[(x.local as usize + 1) % 3]);
-    [a, b].iter().all(|&v| {
-        uv_of_vertex(faces, corner_uvs, x.face, v) == uv_of_vertex(faces, corner_uvs, y.face, v)
-    })
+    [a, b].iter().all(|&v| uv_of_vertex(faces, corner_uvs, x.face, v) == uv_of_vertex(faces, corner_uvs, y.face, v))
 }
 
 #[cfg(test)]
@@ -163,11 +117,7 @@ mod tests {
         let uv = |x: f64, y: f64| DVec2::new(x, y);
         let corner = vec![
             [uv(0.0, 0.0), uv(0.5, 0.0), uv(0.0, 0.5)],
-            [
-                uv(0.0 + shift, 0.5),
-                uv(0.5 + shift, 0.0),
-                uv(0.5 + shift, 0.5),
-            ],
+            [uv(0.0 + shift, 0.5), uv(0.5 + shift, 0.0), uv(0.5 + shift, 0.5)],
         ];
         (faces, corner)
     }
@@ -176,26 +126,10 @@ mod tests {
     fn shared_uv_edge_is_interior_and_split_edge_is_seam() {
         let (faces, uv) = square(false);
         let classes = classify_edges(&faces, &uv, &[false, false]);
-        assert_eq!(
-            classes.counts,
-            EdgeCounts {
-                interior: 1,
-                seam: 0,
-                border: 4,
-                non_manifold: 0
-            }
-        );
+        assert_eq!(classes.counts, EdgeCounts { interior: 1, seam: 0, border: 4, non_manifold: 0 });
         let (faces, uv) = square(true);
         let classes = classify_edges(&faces, &uv, &[false, false]);
-        assert_eq!(
-            classes.counts,
-            EdgeCounts {
-                interior: 0,
-                seam: 1,
-                border: 4,
-                non_manifold: 0
-            }
-        );
+        assert_eq!(classes.counts, EdgeCounts { interior: 0, seam: 1, border: 4, non_manifold: 0 });
         assert_eq!(classes.boundary.len(), 6);
     }
 
@@ -206,13 +140,6 @@ mod tests {
         let uv = vec![[z, DVec2::X, DVec2::Y]; 3];
         let classes = classify_edges(&faces, &uv, &[false; 3]);
         assert_eq!(classes.counts.non_manifold, 1);
-        assert_eq!(
-            classes
-                .boundary
-                .iter()
-                .filter(|(_, k)| *k == SideKind::NonManifold)
-                .count(),
-            3
-        );
+        assert_eq!(classes.boundary.iter().filter(|(_, k)| *k == SideKind::NonManifold).count(), 3);
     }
 }

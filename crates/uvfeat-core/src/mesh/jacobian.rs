@@ -15,11 +15,7 @@ pub struct Jacobian {
 impl Jacobian {
     /// First fundamental form `(E, F, G) = (P_u.P_u, P_u.P_v, P_v.P_v)`.
     pub fn metric(&self) -> [f64; 3] {
-        [
-            self.pu.dot(self.pu),
-            self.pu.dot(self.pv),
-            self.pv.dot(self.pv),
-        ]
+        [self.pu.dot(self.pu), self.pu.dot(self.pv), self.pv.dot(self.pv)]
     }
 
     /// `J^+ w = (J^T J)^-1 J^T w`: the uv displacement whose image is the in-plane part of `w`.

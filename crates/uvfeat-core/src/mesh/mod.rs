@@ -46,17 +46,9 @@ impl TriangleMesh {
     /// # Errors
     /// [`UvfeatError::EmptyMesh`], [`UvfeatError::NonFinitePosition`], [`UvfeatError::NonFiniteUv`],
     /// [`UvfeatError::UvOutOfRange`], [`UvfeatError::IndexOutOfRange`], [`UvfeatError::NoUvs`].
-    pub fn new(
-        positions: &[[f64; 3]],
-        faces: &[[i64; 3]],
-        uvs: &[[f64; 2]],
-        uv_faces: &[[i64; 3]],
-    ) -> Result<Self> {
+    pub fn new(positions: &[[f64; 3]], faces: &[[i64; 3]], uvs: &[[f64; 2]], uv_faces: &[[i64; 3]]) -> Result<Self> {
         if positions.is_empty() || faces.is_empty() {
-            return Err(UvfeatError::EmptyMesh {
-                vertices: positions.len(),
-                faces: faces.len(),
-            });
+            return Err(UvfeatError::EmptyMesh { vertices: positions.len(), faces: faces.len() });
         }
         if uvs.is_empty() {
             return Err(UvfeatError::NoUvs);
@@ -68,30 +60,16 @@ impl TriangleMesh {
                 got: uv_faces.len(),
             });
         }
-        if let Some((index, p)) = positions
-            .iter()
-            .enumerate()
-            .find(|(_, p)| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(UvfeatError::NonFinitePosition { index, value: *p });
-        }
-        if let Some((index, uv)) = uvs
-            .iter()
-            .enumerate()
-            .find(|(_, uv)| !uv.iter().all(|c| c.is_finite()))
-        {
+        let positions = checked_positions(positions)?;
+        if let Some((index, uv)) = uvs.iter().enumerate().find(|(_, uv)| !uv.iter().all(|c| c.is_finite())) {
             return Err(UvfeatError::NonFiniteUv { index, value: *uv });
         }
-        if let Some((index, uv)) = uvs
-            .iter()
-            .enumerate()
-            .find(|(_, uv)| uv.iter().any(|c| !(0.0..=1.0).contains(c)))
-        {
+        if let Some((index, uv)) = uvs.iter().enumerate().find(|(_, uv)| uv.iter().any(|c| !(0.0..=1.0).contains(c))) {
             return Err(UvfeatError::UvOutOfRange { index, value: *uv });
         }
         Ok(Self {
-            positions: positions.iter().map(|p| DVec3::from_array(*p)).collect(),
             faces: checked_indices(faces, positions.len(), "vertex")?,
+            positions,
             uvs: uvs.iter().map(|uv| DVec2::from_array(*uv)).collect(),
             uv_faces: checked_indices(uv_faces, uvs.len(), "uv")?,
         })
@@ -103,19 +81,29 @@ impl TriangleMesh {
     }
 }
 
-fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static str) -> Result<Vec<[u32; 3]>> {
+/// Positions as vectors, once every coordinate is known to be finite.
+///
+/// # Errors
+/// [`UvfeatError::NonFinitePosition`] naming the first bad vertex.
+pub(crate) fn checked_positions(positions: &[[f64; 3]]) -> Result<Vec<DVec3>> {
+    if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        return Err(UvfeatError::NonFinitePosition { index, value: *p });
+    }
+    Ok(positions.iter().map(|p| DVec3::from_array(*p)).collect())
+}
+
+/// Face rows as `u32` indices, once every index is known to be in `0..count`.
+///
+/// # Errors
+/// [`UvfeatError::IndexOutOfRange`] naming the first bad face.
+pub(crate) fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static str) -> Result<Vec<[u32; 3]>> {
     rows.iter()
         .enumerate()
         .map(|(face, row)| {
             let mut out = [0u32; 3];
             for (slot, &index) in out.iter_mut().zip(row) {
                 if index < 0 || index as usize >= count {
-                    return Err(UvfeatError::IndexOutOfRange {
-                        face,
-                        what,
-                        index,
-                        count,
-                    });
+                    return Err(UvfeatError::IndexOutOfRange { face, what, index, count });
                 }
                 *slot = index as u32;
             }
@@ -134,7 +122,5 @@ pub(crate) fn uv_signed_area2(uv: &[DVec2; 3]) -> f64 {
 pub(crate) fn uv_is_degenerate(uv: &[DVec2; 3]) -> bool {
     let e1 = uv[1] - uv[0];
     let e2 = uv[2] - uv[0];
-    uv_signed_area2(uv).abs() <= 1e-12 * e1.length() * e2.length()
-        || e1.length() == 0.0
-        || e2.length() == 0.0
+    uv_signed_area2(uv).abs() <= 1e-12 * e1.length() * e2.length() || e1.length() == 0.0 || e2.length() == 0.0
 }

@@ -33,10 +33,7 @@ mod tests {
         let centre = DVec3::splat(0.25);
         for (v, normal) in n.iter().enumerate() {
             assert!((normal.length() - 1.0).abs() < 1e-12);
-            assert!(
-                normal.dot(p[v] - centre) > 0.0,
-                "vertex {v} normal points inwards"
-            );
+            assert!(normal.dot(p[v] - centre) > 0.0, "vertex {v} normal points inwards");
         }
     }
 }

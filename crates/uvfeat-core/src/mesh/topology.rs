@@ -86,11 +86,7 @@ impl Topology {
                 representative[g as usize] = v as u32;
             }
         }
-        let faces: Vec<[u32; 3]> = mesh
-            .faces
-            .iter()
-            .map(|t| t.map(|v| vertex_ids[v as usize]))
-            .collect();
+        let faces: Vec<[u32; 3]> = mesh.faces.iter().map(|t| t.map(|v| vertex_ids[v as usize])).collect();
         let corner_uvs: Vec<[DVec2; 3]> = (0..faces.len()).map(|f| mesh.corner_uvs(f)).collect();
         // A face whose corners weld together is degenerate in 3D and in the edge graph alike.
         let excluded: Vec<bool> = faces
@@ -107,11 +103,8 @@ impl Topology {
         let sides = boundary_sides(&classes.boundary, &face_chart);
         let links = face_links(&faces, &face_chart, &sides);
         let (corner_groups, n_corners) = corner_groups(&faces, &corner_uvs, &face_chart);
-        let mirrored_uv_faces = corner_uvs
-            .iter()
-            .zip(&excluded)
-            .filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0)
-            .count();
+        let mirrored_uv_faces =
+            corner_uvs.iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();
         let diagnostics = TopologyDiagnostics {
             input_vertices: mesh.positions.len(),
             geometric_vertices: n_geometric,
@@ -146,22 +139,12 @@ impl Topology {
     /// [`UvfeatError::NonFinitePosition`] for NaN or Inf.
     pub fn geometric_positions(&self, positions: &[DVec3]) -> Result<Vec<DVec3>> {
         if positions.len() != self.vertex_ids.len() {
-            return Err(UvfeatError::FrameVertexCount {
-                expected: self.vertex_ids.len(),
-                got: positions.len(),
-            });
+            return Err(UvfeatError::FrameVertexCount { expected: self.vertex_ids.len(), got: positions.len() });
         }
         if let Some((index, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-            return Err(UvfeatError::NonFinitePosition {
-                index,
-                value: p.to_array(),
-            });
+            return Err(UvfeatError::NonFinitePosition { index, value: p.to_array() });
         }
-        Ok(self
-            .representative
-            .iter()
-            .map(|&v| positions[v as usize])
-            .collect())
+        Ok(self.representative.iter().map(|&v| positions[v as usize]).collect())
     }
 
     /// The two geometric vertex ids and corner UVs of a boundary side, in the side's order.
@@ -174,22 +157,15 @@ impl Topology {
 }
 
 fn boundary_sides(boundary: &[(FaceSide, SideKind)], face_chart: &[i32]) -> Vec<BoundarySide> {
-    let index: HashMap<(u32, u8), usize> = boundary
-        .iter()
-        .enumerate()
-        .map(|(i, (s, _))| ((s.face, s.local), i))
-        .collect();
+    let index: HashMap<(u32, u8), usize> =
+        boundary.iter().enumerate().map(|(i, (s, _))| ((s.face, s.local), i)).collect();
     boundary
         .iter()
         .map(|&(side, kind)| {
             let (reverse, adjacent_chart) = match kind {
-                SideKind::Seam {
-                    other_face,
-                    other_local,
-                } => (
-                    index[&(other_face, other_local)] as i32,
-                    face_chart[other_face as usize],
-                ),
+                SideKind::Seam { other_face, other_local } => {
+                    (index[&(other_face, other_local)] as i32, face_chart[other_face as usize])
+                }
                 _ => (-1, -1),
             };
             BoundarySide {

@@ -38,10 +38,7 @@ impl SeamMap {
 ///
 /// `metric(face, corner)` is the frame's metric `[E, F, G]` at a face corner; maps are O(#seams)
 /// per frame.
-pub fn seam_maps(
-    topology: &Topology,
-    metric: impl Fn(u32, usize) -> [f64; 3] + Sync,
-) -> Vec<Option<SeamMap>> {
+pub fn seam_maps(topology: &Topology, metric: impl Fn(u32, usize) -> [f64; 3] + Sync) -> Vec<Option<SeamMap>> {
     topology
         .sides
         .par_iter()
@@ -52,15 +49,9 @@ pub fn seam_maps(
             let ([a, b], [ua_a, ua_b]) = topology.side_endpoints(side);
             let ub_a = uv_of_vertex(&topology.faces, &topology.corner_uvs, other_face, a);
             let ub_b = uv_of_vertex(&topology.faces, &topology.corner_uvs, other_face, b);
-            let m =
-                hinge_map(topology, &metric, side.face, other_face, a, b).unwrap_or_else(|| {
-                    similarity_map(topology, side.face, other_face, ub_b - ub_a, ua_b - ua_a)
-                });
-            Some(SeamMap {
-                origin_from: ua_a,
-                origin_to: ub_a,
-                m,
-            })
+            let m = hinge_map(topology, &metric, side.face, other_face, a, b)
+                .unwrap_or_else(|| similarity_map(topology, side.face, other_face, ub_b - ub_a, ua_b - ua_a));
+            Some(SeamMap { origin_from: ua_a, origin_to: ub_a, m })
         })
         .collect()
 }
@@ -110,22 +101,14 @@ fn hinge_map(
 
 /// Rotation-and-scale taking the A-side UV edge onto the B-side edge, composed with a reflection
 /// about the edge when the two UV triangles have opposite orientation.
-fn similarity_map(
-    topology: &Topology,
-    face_a: u32,
-    face_b: u32,
-    edge_b: DVec2,
-    edge_a: DVec2,
-) -> DMat2 {
+fn similarity_map(topology: &Topology, face_a: u32, face_b: u32, edge_b: DVec2, edge_a: DVec2) -> DMat2 {
     let len2 = edge_a.length_squared();
     if len2 == 0.0 {
         return DMat2::IDENTITY;
     }
     // Complex division edge_b / edge_a as a 2x2 matrix.
-    let (c, s) = (
-        (edge_b.x * edge_a.x + edge_b.y * edge_a.y) / len2,
-        (edge_b.y * edge_a.x - edge_b.x * edge_a.y) / len2,
-    );
+    let (c, s) =
+        ((edge_b.x * edge_a.x + edge_b.y * edge_a.y) / len2, (edge_b.y * edge_a.x - edge_b.x * edge_a.y) / len2);
     let rotate_scale = DMat2::from_cols(DVec2::new(c, s), DVec2::new(-s, c));
     let orientation = |f: u32| uv_signed_area2(&topology.corner_uvs[f as usize]).signum();
     if orientation(face_a) == orientation(face_b) {

@@ -31,11 +31,7 @@ pub fn weld_positions(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize) 
 
 fn exact_key(p: DVec3) -> [u64; 3] {
     // Adding 0.0 turns -0.0 into +0.0 so both weld together.
-    [
-        (p.x + 0.0).to_bits(),
-        (p.y + 0.0).to_bits(),
-        (p.z + 0.0).to_bits(),
-    ]
+    [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits(), (p.z + 0.0).to_bits()]
 }
 
 /// Grid hashing with cells of the tolerance's size: candidates are in the 27 surrounding cells.
@@ -105,11 +101,7 @@ mod tests {
 
     #[test]
     fn tolerance_weld_merges_near_points_only() {
-        let p = [
-            DVec3::ZERO,
-            DVec3::new(1e-9, 0.0, 0.0),
-            DVec3::new(0.5, 0.0, 0.0),
-        ];
+        let p = [DVec3::ZERO, DVec3::new(1e-9, 0.0, 0.0), DVec3::new(0.5, 0.0, 0.0)];
         let (ids, n) = weld_positions(&p, 1e-7);
         assert_eq!(ids, vec![0, 0, 1]);
         assert_eq!(n, 2);

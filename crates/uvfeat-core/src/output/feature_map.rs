@@ -63,62 +63,35 @@ impl FeatureMaps {
         let w = settings.resolution;
         let patterns = Patterns::new(settings);
         let mut pixels = vec![PixelResult::EMPTY; w * w];
-        pixels
-            .par_chunks_mut(w)
-            .enumerate()
-            .for_each_init(Vec::new, |scratch, (j, row)| {
-                for (i, pixel) in row.iter_mut().enumerate() {
-                    let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-                    let psi = pixel_angle(i as u32, j as u32, settings.seed);
-                    *pixel = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
-                }
-            });
+        pixels.par_chunks_mut(w).enumerate().for_each_init(Vec::new, |scratch, (j, row)| {
+            for (i, pixel) in row.iter_mut().enumerate() {
+                let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
+                let psi = pixel_angle(i as u32, j as u32, settings.seed);
+                *pixel = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
+            }
+        });
         let chart = (0..w * w)
-            .map(|t| {
-                atlas.chart_at(DVec2::new(
-                    ((t % w) as f64 + 0.5) / w as f64,
-                    ((t / w) as f64 + 0.5) / w as f64,
-                ))
-            })
+            .map(|t| atlas.chart_at(DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64)))
             .collect();
         Ok(Self::assemble(pixels, chart, settings))
     }
 
     fn assemble(pixels: Vec<PixelResult>, chart: Vec<i32>, settings: &ComputeSettings) -> Self {
         let pick = |f: &dyn Fn(&PixelResult) -> f32| pixels.iter().map(f).collect::<Vec<f32>>();
-        let values = settings
-            .features
-            .iter()
-            .map(|feat| pick(&|p| p.values[feat.index()]))
-            .collect();
-        let standard_errors = settings.standard_errors.then(|| {
-            settings
-                .features
-                .iter()
-                .map(|feat| pick(&|p| p.errors[feat.index()]))
-                .collect()
-        });
+        let values = settings.features.iter().map(|feat| pick(&|p| p.values[feat.index()])).collect();
+        let standard_errors = settings
+            .standard_errors
+            .then(|| settings.features.iter().map(|feat| pick(&|p| p.errors[feat.index()])).collect());
         let evaluated: Vec<&PixelResult> = pixels.iter().filter(|p| p.counts.valid > 0).collect();
         let n = evaluated.len().max(1) as f64;
-        let drawn: u64 = evaluated
-            .iter()
-            .map(|p| u64::from(p.counts.valid + p.counts.missing + p.counts.border))
-            .sum();
+        let drawn: u64 = evaluated.iter().map(|p| u64::from(p.counts.valid + p.counts.missing + p.counts.border)).sum();
         let summary = MapSummary {
             texels: evaluated.len(),
             second_stage_fraction: evaluated.iter().filter(|p| p.second_stage).count() as f64 / n,
             clamped_fraction: evaluated.iter().filter(|p| p.clamped).count() as f64 / n,
-            missing_fraction: evaluated
-                .iter()
-                .map(|p| f64::from(p.counts.missing))
-                .sum::<f64>()
-                / drawn.max(1) as f64,
+            missing_fraction: evaluated.iter().map(|p| f64::from(p.counts.missing)).sum::<f64>() / drawn.max(1) as f64,
             truncated_texels: evaluated.iter().filter(|p| p.counts.border > 0).count(),
-            mean_valid: evaluated
-                .iter()
-                .map(|p| f64::from(p.counts.valid))
-                .sum::<f64>()
-                / n,
+            mean_valid: evaluated.iter().map(|p| f64::from(p.counts.valid)).sum::<f64>() / n,
         };
         Self {
             resolution: settings.resolution,

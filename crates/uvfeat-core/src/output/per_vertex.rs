@@ -24,12 +24,7 @@ pub enum VertexQuery {
 fn corners(atlas: &Atlas) -> Vec<Vec<(DVec2, i32)>> {
     let topology = &atlas.topology;
     let mut out = vec![Vec::new(); topology.n_geometric()];
-    for ((tri, uv), &chart) in topology
-        .faces
-        .iter()
-        .zip(&topology.corner_uvs)
-        .zip(&topology.face_chart)
-    {
+    for ((tri, uv), &chart) in topology.faces.iter().zip(&topology.corner_uvs).zip(&topology.face_chart) {
         if chart < 0 {
             continue;
         }
@@ -53,12 +48,9 @@ fn lookup(maps: &FeatureMaps, uv: DVec2, chart: i32) -> Option<Vec<f64>> {
     let mut sums = vec![0.0; maps.values.len()];
     let mut weights = vec![0.0; maps.values.len()];
     let mut any = false;
-    for (di, dj, weight) in [
-        (0, 0, (1.0 - fx) * (1.0 - fy)),
-        (1, 0, fx * (1.0 - fy)),
-        (0, 1, (1.0 - fx) * fy),
-        (1, 1, fx * fy),
-    ] {
+    for (di, dj, weight) in
+        [(0, 0, (1.0 - fx) * (1.0 - fy)), (1, 0, fx * (1.0 - fy)), (0, 1, (1.0 - fx) * fy), (1, 1, fx * fy)]
+    {
         let (i, j) = (i0 + di, j0 + dj);
         if i < 0 || j < 0 || i >= w || j >= w {
             continue;
@@ -76,22 +68,12 @@ fn lookup(maps: &FeatureMaps, uv: DVec2, chart: i32) -> Option<Vec<f64>> {
             }
         }
     }
-    any.then(|| {
-        sums.iter()
-            .zip(&weights)
-            .map(|(s, w)| if *w > 0.0 { s / w } else { f64::NAN })
-            .collect()
-    })
+    any.then(|| sums.iter().zip(&weights).map(|(s, w)| if *w > 0.0 { s / w } else { f64::NAN }).collect())
 }
 
 /// Per-vertex values of every map, one `Vec` per feature with one value per *input* vertex
 /// (vertices the file split at seams get the value of their welded vertex).
-pub fn per_vertex(
-    atlas: &Atlas,
-    maps: &FeatureMaps,
-    settings: &ComputeSettings,
-    query: VertexQuery,
-) -> Vec<Vec<f32>> {
+pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
     let corners = corners(atlas);
     let patterns = Patterns::new(settings);
     let geometric: Vec<Vec<f64>> = corners
@@ -100,29 +82,18 @@ pub fn per_vertex(
         .map_init(Vec::new, |scratch, (vertex, list)| {
             let mut found: Vec<Vec<f64>> = Vec::new();
             if query == VertexQuery::Texture {
-                found.extend(
-                    list.iter()
-                        .filter_map(|&(uv, chart)| lookup(maps, uv, chart)),
-                );
+                found.extend(list.iter().filter_map(|&(uv, chart)| lookup(maps, uv, chart)));
             }
             if found.is_empty() {
-                let psi = TAU * f64::from(pcg_hash(vertex as u32 ^ settings.seed as u32))
-                    / 4_294_967_296.0;
+                let psi = TAU * f64::from(pcg_hash(vertex as u32 ^ settings.seed as u32)) / 4_294_967_296.0;
                 found.extend(list.iter().map(|&(uv, _)| {
                     let result = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
-                    maps.features
-                        .iter()
-                        .map(|f| f64::from(result.values[f.index()]))
-                        .collect()
+                    maps.features.iter().map(|f| f64::from(result.values[f.index()])).collect()
                 }));
             }
             (0..maps.features.len())
                 .map(|f| {
-                    let finite: Vec<f64> = found
-                        .iter()
-                        .map(|v| v[f])
-                        .filter(|x| x.is_finite())
-                        .collect();
+                    let finite: Vec<f64> = found.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
                     if finite.is_empty() {
                         f64::NAN
                     } else {
@@ -133,11 +104,5 @@ pub fn per_vertex(
         })
         .collect();
     let ids = &atlas.topology.vertex_ids;
-    (0..maps.features.len())
-        .map(|f| {
-            ids.iter()
-                .map(|&g| geometric[g as usize][f] as f32)
-                .collect()
-        })
-        .collect()
+    (0..maps.features.len()).map(|f| ids.iter().map(|&g| geometric[g as usize][f] as f32).collect()).collect()
 }

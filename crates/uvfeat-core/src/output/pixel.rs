@@ -4,9 +4,7 @@
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::features::{estimate, relative_standard_error, NeighbourhoodStats};
-use crate::sampling::{
-    centre_at, disk_pattern, gather, gather_covering, Sample, SampleCounts, TURNS,
-};
+use crate::sampling::{centre_at, disk_pattern, gather, gather_covering, Sample, SampleCounts, TURNS};
 use glam::DVec2;
 
 /// Interleaved batches behind the standard errors.
@@ -26,15 +24,9 @@ impl Patterns {
     pub fn new(settings: &ComputeSettings) -> Self {
         let n = settings.samples;
         if settings.adaptive {
-            Self {
-                first: disk_pattern(n / 2, settings.seed, 1),
-                second: disk_pattern(n - n / 2, settings.seed, 2),
-            }
+            Self { first: disk_pattern(n / 2, settings.seed, 1), second: disk_pattern(n - n / 2, settings.seed, 2) }
         } else {
-            Self {
-                first: disk_pattern(n, settings.seed, 0),
-                second: Vec::new(),
-            }
+            Self { first: disk_pattern(n, settings.seed, 0), second: Vec::new() }
         }
     }
 }
@@ -59,11 +51,7 @@ impl PixelResult {
     pub const EMPTY: PixelResult = PixelResult {
         values: [f32::NAN; 9],
         errors: [f32::NAN; 9],
-        counts: SampleCounts {
-            valid: 0,
-            missing: 0,
-            border: 0,
-        },
+        counts: SampleCounts { valid: 0, missing: 0, border: 0 },
         second_stage: false,
         clamped: false,
     };
@@ -86,37 +74,20 @@ pub fn evaluate_point(
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
     let first = patterns.first.len();
-    let (mut counts, area) = gather_covering(
-        atlas,
-        &centre,
-        &patterns.first,
-        psi,
-        &mut sampler,
-        settings.grow_margin,
-        scratch,
-    );
+    let (mut counts, area) =
+        gather_covering(atlas, &centre, &patterns.first, psi, &mut sampler, settings.grow_margin, scratch);
     let mut stats = NeighbourhoodStats::default();
     stats.accumulate(scratch, centre.normal, &stats_settings);
     let mut second_stage = false;
     if settings.adaptive {
-        let needs_more = settings
-            .features
-            .iter()
-            .any(|&f| !(relative_standard_error(f, &stats, &estimators) <= settings.tau));
+        let needs_more =
+            settings.features.iter().any(|&f| !(relative_standard_error(f, &stats, &estimators) <= settings.tau));
         if needs_more && !patterns.second.is_empty() {
             second_stage = true;
             let second = patterns.second.len();
             let total = (first + second) as f64;
             let start = scratch.len();
-            counts.add(gather(
-                atlas,
-                &centre,
-                &patterns.second,
-                psi,
-                area / second as f64,
-                &sampler,
-                scratch,
-            ));
+            counts.add(gather(atlas, &centre, &patterns.second, psi, area / second as f64, &sampler, scratch));
             // Each stage's samples stood for A_uv / N_stage; pooled they stand for A_uv / N.
             stats.scale_areas(first as f64 / total);
             let mut more = NeighbourhoodStats::default();
@@ -134,8 +105,7 @@ pub fn evaluate_point(
         clamped: estimates.clamped,
     };
     if settings.standard_errors {
-        result.errors =
-            batch_standard_errors(scratch, &centre.normal, settings, second_stage, first);
+        result.errors = batch_standard_errors(scratch, &centre.normal, settings, second_stage, first);
     }
     result
 }
@@ -158,11 +128,7 @@ fn batch_standard_errors(
         batches[group % BATCHES].accumulate(std::slice::from_ref(sample), *normal, &stats_settings);
     }
     // Each batch holds about 1/BATCHES of the samples, so its absolute areas are scaled back up.
-    let pooled_scale = if pooled {
-        first as f64 / settings.samples as f64
-    } else {
-        1.0
-    };
+    let pooled_scale = if pooled { first as f64 / settings.samples as f64 } else { 1.0 };
     let values: Vec<[f64; 9]> = batches
         .iter_mut()
         .map(|b| {
@@ -171,11 +137,7 @@ fn batch_standard_errors(
         })
         .collect();
     std::array::from_fn(|f| {
-        let finite: Vec<f64> = values
-            .iter()
-            .map(|v| v[f])
-            .filter(|x| x.is_finite())
-            .collect();
+        let finite: Vec<f64> = values.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
         let n = finite.len() as f64;
         if n < 2.0 {
             return f32::NAN;

@@ -75,47 +75,27 @@ impl ComputeSettings {
     /// # Errors
     /// [`UvfeatError::InvalidParameter`] naming the parameter and the valid range.
     pub fn validate(&self) -> Result<()> {
-        let invalid = |name: &'static str, reason: String| {
-            Err(UvfeatError::InvalidParameter { name, reason })
-        };
+        let invalid = |name: &'static str, reason: String| Err(UvfeatError::InvalidParameter { name, reason });
         if self.features.is_empty() {
             return invalid("features", "ask for at least one feature".into());
         }
         if !(self.radius.is_finite() && self.radius > 0.0) {
-            return invalid(
-                "radius",
-                format!("must be a positive, finite length, got {}", self.radius),
-            );
+            return invalid("radius", format!("must be a positive, finite length, got {}", self.radius));
         }
         if self.samples < 4 || self.samples > 65_536 {
-            return invalid(
-                "samples",
-                format!("must be between 4 and 65536, got {}", self.samples),
-            );
+            return invalid("samples", format!("must be between 4 and 65536, got {}", self.samples));
         }
         if self.resolution == 0 || self.resolution > MAX_RESOLUTION {
-            return invalid(
-                "compute_resolution",
-                format!("must be in 1..={MAX_RESOLUTION}, got {}", self.resolution),
-            );
+            return invalid("compute_resolution", format!("must be in 1..={MAX_RESOLUTION}, got {}", self.resolution));
         }
         if !(self.margin.is_finite() && self.margin >= 1.0 && self.margin <= 4.0) {
             return invalid("margin", format!("must be in [1, 4], got {}", self.margin));
         }
         if !(self.tau >= 0.0) {
-            return invalid(
-                "tau",
-                format!("must be >= 0 (inf = stage 1 only), got {}", self.tau),
-            );
+            return invalid("tau", format!("must be >= 0 (inf = stage 1 only), got {}", self.tau));
         }
         if !(0.0..1.0).contains(&self.rho_min_fraction) {
-            return invalid(
-                "rho_min",
-                format!(
-                    "must be a fraction of r in [0, 1), got {}",
-                    self.rho_min_fraction
-                ),
-            );
+            return invalid("rho_min", format!("must be a fraction of r in [0, 1), got {}", self.rho_min_fraction));
         }
         if !(self.flat_tol >= 0.0) {
             return invalid("flat_tol", format!("must be >= 0, got {}", self.flat_tol));

@@ -18,13 +18,7 @@ pub(crate) struct EdgeHit {
 
 /// Appends every texel of a `resolution`² grid whose closed square intersects the segment `a -> b`
 /// (UV coordinates), walking the segment column by column (O(length) texels).
-pub(crate) fn rasterise_edge(
-    side: u32,
-    a: DVec2,
-    b: DVec2,
-    resolution: usize,
-    out: &mut Vec<EdgeHit>,
-) {
+pub(crate) fn rasterise_edge(side: u32, a: DVec2, b: DVec2, resolution: usize, out: &mut Vec<EdgeHit>) {
     let scale = resolution as f64;
     let (p, q) = (a * scale, b * scale);
     let last = resolution as i64 - 1;
@@ -38,11 +32,7 @@ pub(crate) fn rasterise_edge(
     };
     for i in (x0.floor() as i64).max(0)..=(x1.floor() as i64).min(last) {
         let (xa, xb) = (x0.max(i as f64), x1.min(i as f64 + 1.0));
-        let (ya, yb) = if q.x == p.x {
-            (p.y, q.y)
-        } else {
-            (y_at(xa), y_at(xb))
-        };
+        let (ya, yb) = if q.x == p.x { (p.y, q.y) } else { (y_at(xa), y_at(xb)) };
         let (y0, y1) = (ya.min(yb), ya.max(yb));
         for j in (y0.floor() as i64).max(0)..=(y1.floor() as i64).min(last) {
             let centre = DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
@@ -61,11 +51,7 @@ pub(crate) fn rasterise_edge(
 pub(crate) fn closest_on_segment(p: DVec2, q: DVec2, c: DVec2) -> (f64, f64) {
     let d = q - p;
     let len2 = d.length_squared();
-    let t = if len2 > 0.0 {
-        ((c - p).dot(d) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let t = if len2 > 0.0 { ((c - p).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
     ((p + d * t - c).length(), t)
 }
 
@@ -76,10 +62,7 @@ mod tests {
     fn texels(a: DVec2, b: DVec2, res: usize) -> Vec<(usize, usize)> {
         let mut out = Vec::new();
         rasterise_edge(0, a, b, res, &mut out);
-        let mut t: Vec<_> = out
-            .iter()
-            .map(|h| (h.texel as usize % res, h.texel as usize / res))
-            .collect();
+        let mut t: Vec<_> = out.iter().map(|h| (h.texel as usize % res, h.texel as usize / res)).collect();
         t.sort_unstable();
         t.dedup();
         t
@@ -94,23 +77,14 @@ mod tests {
         sorted.sort_by_key(|&(i, j)| (i, j));
         for w in sorted.windows(2) {
             let (a, b) = (w[0], w[1]);
-            assert!(
-                a.0.abs_diff(b.0) + a.1.abs_diff(b.1) <= 1 || a.0 == b.0,
-                "gap between {a:?} and {b:?}"
-            );
+            assert!(a.0.abs_diff(b.0) + a.1.abs_diff(b.1) <= 1 || a.0 == b.0, "gap between {a:?} and {b:?}");
         }
     }
 
     #[test]
     fn vertical_and_tiny_edges_are_found() {
-        assert_eq!(
-            texels(DVec2::new(0.25, 0.1), DVec2::new(0.25, 0.35), 4),
-            vec![(1, 0), (1, 1)]
-        );
-        assert_eq!(
-            texels(DVec2::new(0.6, 0.6), DVec2::new(0.61, 0.6), 4),
-            vec![(2, 2)]
-        );
+        assert_eq!(texels(DVec2::new(0.25, 0.1), DVec2::new(0.25, 0.35), 4), vec![(1, 0), (1, 1)]);
+        assert_eq!(texels(DVec2::new(0.6, 0.6), DVec2::new(0.61, 0.6), 4), vec![(2, 2)]);
     }
 
     #[test]

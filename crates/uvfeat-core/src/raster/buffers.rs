@@ -42,12 +42,7 @@ pub struct GeometryBuffers {
 
 impl GeometryBuffers {
     /// Evaluates the buffers of one frame; parallel over rows.
-    pub fn evaluate(
-        topology: &Topology,
-        coverage: &Coverage,
-        frame: &Frame,
-        precision: Precision,
-    ) -> Self {
+    pub fn evaluate(topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) -> Self {
         let n = coverage.face.len();
         let mut buffers = Self {
             position: vec![[f32::NAN; 3]; n],
@@ -61,13 +56,7 @@ impl GeometryBuffers {
 
     /// Overwrites the covered texels for a new frame of the same coverage (empty texels keep
     /// their NaN), so animation frames allocate nothing.
-    pub fn refresh(
-        &mut self,
-        topology: &Topology,
-        coverage: &Coverage,
-        frame: &Frame,
-        precision: Precision,
-    ) {
+    pub fn refresh(&mut self, topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) {
         let row = coverage.resolution;
         self.position
             .par_chunks_mut(row)
@@ -84,9 +73,8 @@ impl GeometryBuffers {
                     let [b1, b2] = coverage.bary[t].map(f64::from);
                     let weights = [1.0 - b1 - b2, b1, b2];
                     let tri = topology.faces[face];
-                    let interpolate = |values: &[DVec3]| -> DVec3 {
-                        (0..3).map(|k| values[tri[k] as usize] * weights[k]).sum()
-                    };
+                    let interpolate =
+                        |values: &[DVec3]| -> DVec3 { (0..3).map(|k| values[tri[k] as usize] * weights[k]).sum() };
                     let p = interpolate(&frame.positions);
                     let nrm = interpolate(&frame.normals).normalize_or_zero();
                     position[i] = p.as_vec3().to_array().map(|x| precision.round(x));

@@ -109,9 +109,7 @@ impl Coverage {
             .flatten_iter()
             .collect();
         hits.par_sort_unstable_by(|x, y| {
-            (x.texel, x.distance, x.side)
-                .partial_cmp(&(y.texel, y.distance, y.side))
-                .expect("finite distances")
+            (x.texel, x.distance, x.side).partial_cmp(&(y.texel, y.distance, y.side)).expect("finite distances")
         });
         for group in hits.chunk_by(|x, y| x.texel == y.texel) {
             let t = group[0].texel as usize;
@@ -147,28 +145,15 @@ impl Coverage {
 fn chart_distance(chart: &[i32], r: usize) -> Vec<u8> {
     let mut d = vec![u8::MAX; r * r];
     let neighbours = |i: usize, j: usize| {
-        [
-            (-1i64, -1i64),
-            (0, -1),
-            (1, -1),
-            (-1, 0),
-            (1, 0),
-            (-1, 1),
-            (0, 1),
-            (1, 1),
-        ]
-        .into_iter()
-        .map(move |(di, dj)| (i as i64 + di, j as i64 + dj))
+        [(-1i64, -1i64), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)]
+            .into_iter()
+            .map(move |(di, dj)| (i as i64 + di, j as i64 + dj))
     };
     for j in 0..r {
         for i in 0..r {
             let c = chart[j * r + i];
             let edge = neighbours(i, j).any(|(x, y)| {
-                x < 0
-                    || y < 0
-                    || x >= r as i64
-                    || y >= r as i64
-                    || chart[y as usize * r + x as usize] != c
+                x < 0 || y < 0 || x >= r as i64 || y >= r as i64 || chart[y as usize * r + x as usize] != c
             });
             if edge {
                 d[j * r + i] = 1;

@@ -31,12 +31,7 @@ fn owns_boundary(d: DVec2) -> bool {
 
 /// Appends every texel of a `resolution`² grid whose centre is inside the UV triangle `uv`.
 /// Works for both orientations (mirrored charts are clockwise in UV).
-pub(crate) fn rasterise_triangle(
-    face: u32,
-    uv: [DVec2; 3],
-    resolution: usize,
-    out: &mut Vec<TriangleHit>,
-) {
+pub(crate) fn rasterise_triangle(face: u32, uv: [DVec2; 3], resolution: usize, out: &mut Vec<TriangleHit>) {
     let scale = resolution as f64;
     let mut v = uv.map(|t| t * scale);
     let area2 = (v[1] - v[0]).perp_dot(v[2] - v[0]);
@@ -68,11 +63,7 @@ pub(crate) fn rasterise_triangle(
             for k in 0..3 {
                 bary[order[(k + 2) % 3]] = w[k] / area2;
             }
-            out.push(TriangleHit {
-                texel: (j * resolution + i) as u32,
-                face,
-                bary: [bary[1] as f32, bary[2] as f32],
-            });
+            out.push(TriangleHit { texel: (j * resolution + i) as u32, face, bary: [bary[1] as f32, bary[2] as f32] });
         }
     }
 }
@@ -100,11 +91,7 @@ mod tests {
 
     #[test]
     fn mirrored_triangle_gives_the_same_barycentrics() {
-        let uv = [
-            DVec2::new(0.1, 0.1),
-            DVec2::new(0.9, 0.2),
-            DVec2::new(0.3, 0.8),
-        ];
+        let uv = [DVec2::new(0.1, 0.1), DVec2::new(0.9, 0.2), DVec2::new(0.3, 0.8)];
         let ccw = hits(uv, 32);
         let cw = hits([uv[0], uv[2], uv[1]], 32);
         assert_eq!(ccw.len(), cw.len());

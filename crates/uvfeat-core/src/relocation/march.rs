@@ -19,25 +19,13 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
     let mut jumps = 0;
     loop {
         if atlas.chart_at(target) == chart {
-            return Located::Inside {
-                chart,
-                uv: target,
-                m_path,
-                jumps,
-                face: None,
-            };
+            return Located::Inside { chart, uv: target, m_path, jumps, face: None };
         }
         let offset = target - origin;
         let steps = (offset.abs().max_element() * resolution).ceil().max(1.0);
         let step = offset / steps;
         let Some(exit) = first_exit(atlas, origin, step, steps as usize, chart) else {
-            return Located::Inside {
-                chart,
-                uv: target,
-                m_path,
-                jumps,
-                face: None,
-            };
+            return Located::Inside { chart, uv: target, m_path, jumps, face: None };
         };
         let last_inside = origin + step * (exit - 1) as f64;
         let Some(texel) = border_texel(atlas, last_inside, chart) else {
@@ -63,20 +51,12 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
 
 /// First `k` in `1..=steps` with `origin + k step` outside `chart` (SPEC §1.5 march), skipping
 /// ahead by the chart distance of the current texel: the points skipped are provably inside.
-fn first_exit(
-    atlas: &Atlas,
-    origin: DVec2,
-    step: DVec2,
-    steps: usize,
-    chart: i32,
-) -> Option<usize> {
+fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
     let coverage = &atlas.coverage;
     let mut k = 0;
     loop {
         let here = atlas.texel_at(origin + step * k as f64);
-        let skip = here
-            .filter(|&t| coverage.chart[t] == chart)
-            .map_or(1, |t| coverage.chart_distance[t].max(2) - 1);
+        let skip = here.filter(|&t| coverage.chart[t] == chart).map_or(1, |t| coverage.chart_distance[t].max(2) - 1);
         k += usize::from(skip);
         if k > steps {
             return None;
@@ -90,9 +70,7 @@ fn first_exit(
 /// The border texel of `chart` at `uv`, else the one of its 3x3 neighbourhood closest to `uv`.
 pub fn border_texel(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<usize> {
     let coverage = &atlas.coverage;
-    atlas.nearest_texel(uv, |t| {
-        coverage.chart[t] == chart && coverage.border_side[t] >= 0
-    })
+    atlas.nearest_texel(uv, |t| coverage.chart[t] == chart && coverage.border_side[t] >= 0)
 }
 
 /// A parametric point carried across a seam.
@@ -114,10 +92,5 @@ pub fn cross_seam(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Crossing> {
     let texel = border_texel(atlas, uv, chart)?;
     let side = atlas.coverage.border_side[texel] as usize;
     let map = atlas.frame.seam_maps[side]?;
-    Some(Crossing {
-        chart: atlas.topology.sides[side].adjacent_chart,
-        uv: map.apply(uv),
-        m: map.m,
-        side,
-    })
+    Some(Crossing { chart: atlas.topology.sides[side].adjacent_chart, uv: map.apply(uv), m: map.m, side })
 }

@@ -22,13 +22,7 @@ pub enum Located {
     /// is the face containing `uv` when the method found it (the walk), else `None` (the lookup
     /// then uses the face of the texel).
     #[allow(missing_docs)]
-    Inside {
-        chart: i32,
-        uv: DVec2,
-        m_path: DMat2,
-        jumps: u32,
-        face: Option<u32>,
-    },
+    Inside { chart: i32, uv: DVec2, m_path: DMat2, jumps: u32, face: Option<u32> },
     /// The path reached the mesh border: the point is off the surface.
     Border,
     /// No way across was found, or more than `max_jumps` seams were needed.
@@ -53,9 +47,9 @@ pub enum Relocation {
 #[inline]
 pub fn well_inside(atlas: &Atlas, target: DVec2, chart: i32) -> bool {
     let coverage = &atlas.coverage;
-    atlas.texel_at(target).is_some_and(|t| {
-        coverage.chart[t] == chart && coverage.chart_distance[t] >= 2 && coverage.border_side[t] < 0
-    })
+    atlas
+        .texel_at(target)
+        .is_some_and(|t| coverage.chart[t] == chart && coverage.chart_distance[t] >= 2 && coverage.border_side[t] < 0)
 }
 
 /// Locates `target`, an offset of `start` in `chart`, with `method` (SPEC §1.5 `locate`).
@@ -70,13 +64,7 @@ pub fn locate_with(
     max_jumps: u32,
 ) -> Located {
     if well_inside(atlas, target, chart) {
-        return Located::Inside {
-            chart,
-            uv: target,
-            m_path: DMat2::IDENTITY,
-            jumps: 0,
-            face: None,
-        };
+        return Located::Inside { chart, uv: target, m_path: DMat2::IDENTITY, jumps: 0, face: None };
     }
     match method {
         Relocation::March => march(atlas, start, chart, target, max_jumps),
@@ -89,13 +77,5 @@ pub fn locate_with(
 
 /// Locates `target`, an offset of `start` in `chart`, with the default method (the exact walk).
 pub fn locate(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: u32) -> Located {
-    locate_with(
-        atlas,
-        Relocation::Walk,
-        start,
-        None,
-        chart,
-        target,
-        max_jumps,
-    )
+    locate_with(atlas, Relocation::Walk, start, None, chart, target, max_jumps)
 }

@@ -36,9 +36,7 @@ enum Stop {
 /// (whatever the triangle's orientation).
 #[inline]
 fn edge_functions(corners: &[DVec2; 3], uv: DVec2) -> [f64; 3] {
-    let orientation = (corners[1] - corners[0])
-        .perp_dot(corners[2] - corners[0])
-        .signum();
+    let orientation = (corners[1] - corners[0]).perp_dot(corners[2] - corners[0]).signum();
     std::array::from_fn(|k| {
         let (a, b) = (corners[k], corners[(k + 1) % 3]);
         (b - a).perp_dot(uv - a) * orientation
@@ -46,13 +44,7 @@ fn edge_functions(corners: &[DVec2; 3], uv: DVec2) -> [f64; 3] {
 }
 
 /// Walks from `from` (in `face`, entered through edge `entry`) towards `target` inside one chart.
-fn walk_in_chart(
-    topology: &Topology,
-    mut face: u32,
-    mut entry: Option<u8>,
-    mut from: DVec2,
-    target: DVec2,
-) -> Stop {
+fn walk_in_chart(topology: &Topology, mut face: u32, mut entry: Option<u8>, mut from: DVec2, target: DVec2) -> Stop {
     for _ in 0..MAX_FACES {
         let corners = &topology.corner_uvs[face as usize];
         let at_target = edge_functions(corners, target);
@@ -95,10 +87,7 @@ pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
     let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
     match walk_in_chart(topology, face, None, centroid, uv) {
         Stop::Arrived { face } => Some(Home { face, point: uv }),
-        Stop::Boundary { side, point } => Some(Home {
-            face: topology.sides[side as usize].face,
-            point,
-        }),
+        Stop::Boundary { side, point } => Some(Home { face: topology.sides[side as usize].face, point }),
         Stop::Lost => None,
     }
 }
@@ -113,13 +102,7 @@ pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Locate
         match walk_in_chart(topology, face, entry, from, target) {
             Stop::Arrived { face } => {
                 let chart = topology.face_chart[face as usize];
-                return Located::Inside {
-                    chart,
-                    uv: target,
-                    m_path,
-                    jumps,
-                    face: Some(face),
-                };
+                return Located::Inside { chart, uv: target, m_path, jumps, face: Some(face) };
             }
             Stop::Lost => return Located::Missing,
             Stop::Boundary { side, point } => {

@@ -16,9 +16,7 @@ const EDGE_RADIUS: f64 = 0.95;
 
 /// `true` when no accepted sample came from the rim of the pattern.
 fn covers_the_ball(samples: &[Sample], pattern: &[DVec2]) -> bool {
-    samples
-        .iter()
-        .all(|s| pattern[s.pattern_index as usize].length_squared() < EDGE_RADIUS * EDGE_RADIUS)
+    samples.iter().all(|s| pattern[s.pattern_index as usize].length_squared() < EDGE_RADIUS * EDGE_RADIUS)
 }
 
 /// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` turned by `psi`;
@@ -37,15 +35,7 @@ pub fn gather_covering(
     loop {
         out.clear();
         let area = ellipse_area(centre, sampler);
-        let counts = gather(
-            atlas,
-            centre,
-            pattern,
-            psi,
-            area / pattern.len() as f64,
-            sampler,
-            out,
-        );
+        let counts = gather(atlas, centre, pattern, psi, area / pattern.len() as f64, sampler, out);
         if !grow || sampler.margin >= MAX_MARGIN || covers_the_ball(out, pattern) {
             return (counts, area);
         }

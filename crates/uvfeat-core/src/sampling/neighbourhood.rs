@@ -101,9 +101,7 @@ pub fn centre_at(atlas: &Atlas, uv: DVec2) -> Option<Centre> {
     let chart = atlas.chart_at(uv);
     let home = home(atlas, uv, chart)?;
     let point = evaluate_face(atlas, home.face, home.point)?;
-    let distortion = atlas
-        .frame
-        .sampling_distortion(&atlas.topology, home.face, home.point);
+    let distortion = atlas.frame.sampling_distortion(&atlas.topology, home.face, home.point);
     if !(distortion.sigma2 > 1e-12 * distortion.sigma1) {
         return None;
     }
@@ -165,13 +163,7 @@ pub fn gather(
             settings.max_jumps,
         );
         let (chart, uv, m_path, face) = match located {
-            Located::Inside {
-                chart,
-                uv,
-                m_path,
-                face,
-                ..
-            } => (chart, uv, m_path, face),
+            Located::Inside { chart, uv, m_path, face, .. } => (chart, uv, m_path, face),
             Located::Border => {
                 counts.border += 1;
                 continue;

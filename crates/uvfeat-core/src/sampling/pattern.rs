@@ -31,21 +31,13 @@ pub fn concentric_disk(xi: DVec2) -> DVec2 {
     if a == 0.0 && b == 0.0 {
         return DVec2::ZERO;
     }
-    let (radius, phi) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
-    } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
-    };
+    let (radius, phi) = if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, FRAC_PI_2 - FRAC_PI_4 * (a / b)) };
     DVec2::new(radius * phi.cos(), radius * phi.sin())
 }
 
 /// Grid of `n_x x n_y = n` cells with `n_x` the largest divisor of `n` not above `sqrt(n)`.
 pub fn grid_shape(n: usize) -> (usize, usize) {
-    let nx = (1..=n.max(1))
-        .take_while(|d| d * d <= n)
-        .filter(|d| n % d == 0)
-        .last()
-        .unwrap_or(1);
+    let nx = (1..=n.max(1)).take_while(|d| d * d <= n).filter(|d| n % d == 0).last().unwrap_or(1);
     (nx, n / nx)
 }
 
@@ -71,8 +63,7 @@ pub fn disk_pattern(n: usize, seed: u64, stage: u32) -> Vec<DVec2> {
     for k in 0..m {
         let cell = k as u32;
         let radius = ((k as f64 + unit(&[s0, s1, stage, cell, 3])) / m as f64).sqrt();
-        let spread =
-            (k as f64 * 0.618_033_988_749_895 + unit(&[s0, s1, stage, cell, 4]) / m as f64).fract();
+        let spread = (k as f64 * 0.618_033_988_749_895 + unit(&[s0, s1, stage, cell, 4]) / m as f64).fract();
         let base = DVec2::from_angle(sector * spread) * radius;
         points.extend((0..TURNS).map(|t| DVec2::from_angle(sector * t as f64).rotate(base)));
     }
@@ -88,14 +79,8 @@ pub fn stratified_disk(n: usize, seed: u64, stage: u32) -> Vec<DVec2> {
         .flat_map(|l| (0..nx).map(move |k| (k, l)))
         .map(|(k, l)| {
             let cell = (l * nx + k) as u32;
-            let jitter = DVec2::new(
-                unit(&[s0, s1, stage, cell, 1]),
-                unit(&[s0, s1, stage, cell, 2]),
-            );
-            concentric_disk(DVec2::new(
-                (k as f64 + jitter.x) / nx as f64,
-                (l as f64 + jitter.y) / ny as f64,
-            ))
+            let jitter = DVec2::new(unit(&[s0, s1, stage, cell, 1]), unit(&[s0, s1, stage, cell, 2]));
+            concentric_disk(DVec2::new((k as f64 + jitter.x) / nx as f64, (l as f64 + jitter.y) / ny as f64))
         })
         .collect()
 }

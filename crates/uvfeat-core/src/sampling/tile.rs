@@ -49,21 +49,8 @@ pub fn neighbourhood_tile(
             let mut samples = Vec::with_capacity(n);
             let psi = pixel_angle(i as u32, j as u32, settings.seed);
             let mut sampler = sampler;
-            gather_covering(
-                atlas,
-                &centre,
-                &pattern,
-                psi,
-                &mut sampler,
-                settings.grow_margin,
-                &mut samples,
-            );
-            Some((
-                t as u32,
-                centre.position.to_array(),
-                centre.normal.to_array(),
-                samples,
-            ))
+            gather_covering(atlas, &centre, &pattern, psi, &mut sampler, settings.grow_margin, &mut samples);
+            Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
         })
         .collect();
     let count = per_texel.len();

@@ -23,12 +23,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// Median of `f(value, texel centre)` over the texels of a map where `keep(texel)` holds.
-fn median_where(
-    maps: &FeatureMaps,
-    feature: Feature,
-    keep: impl Fn(usize) -> bool,
-    f: impl Fn(f64) -> f64,
-) -> f64 {
+fn median_where(maps: &FeatureMaps, feature: Feature, keep: impl Fn(usize) -> bool, f: impl Fn(f64) -> f64) -> f64 {
     let k = maps.features.iter().position(|&x| x == feature).unwrap();
     median(
         (0..maps.chart.len())
@@ -52,13 +47,9 @@ fn unit_sphere_meets_the_acceptance_checks() {
     let lbe = median_where(&m, Feature::BendingEnergy, all, |e| e);
     let s = median_where(&m, Feature::ShapeIndex, all, |s| s);
     let c = median_where(&m, Feature::Curvedness, all, |c| c);
-    let (k1, k2) = (
-        median_where(&m, Feature::K1, all, |x| x),
-        median_where(&m, Feature::K2, all, |x| x),
-    );
+    let (k1, k2) = (median_where(&m, Feature::K1, all, |x| x), median_where(&m, Feature::K2, all, |x| x));
     let vr = median_where(&m, Feature::VolumeInvariant, all, |v| v);
-    let exact_vr = 2.0 * std::f64::consts::PI * 0.2f64.powi(3) / 3.0
-        - std::f64::consts::PI * 0.2f64.powi(4) / 4.0;
+    let exact_vr = 2.0 * std::f64::consts::PI * 0.2f64.powi(3) / 3.0 - std::f64::consts::PI * 0.2f64.powi(4) / 4.0;
     eprintln!("sphere: |H-1| {h:.4}, |K-1| {k:.4}, LBE {lbe:.4}, S {s:.4}, C {c:.4}, k1 {k1:.4}, k2 {k2:.4}, Vr {vr:.6} vs {exact_vr:.6}");
     eprintln!("summary {:?}", m.summary);
     assert!(h < 0.03, "median |H - 1| = {h}");
@@ -66,23 +57,15 @@ fn unit_sphere_meets_the_acceptance_checks() {
     assert!((lbe - 1.0).abs() < 0.03, "LBE {lbe}");
     assert!(s > 0.95, "shape index {s}");
     assert!((c - 1.0).abs() < 0.03 && (k1 - 1.0).abs() < 0.05 && (k2 - 1.0).abs() < 0.05);
-    assert!(
-        (vr - exact_vr).abs() < 0.01 * exact_vr,
-        "V_r {vr} vs {exact_vr}"
-    );
+    assert!((vr - exact_vr).abs() < 0.01 * exact_vr, "V_r {vr} vs {exact_vr}");
     // Away from the poles, where the lat-long chart degenerates into a fan of one-triangle wedges
     // separated by seams and a sample going over the pole needs more than max_jumps crossings.
     let w = m.resolution;
     let temperate = |t: usize| ((((t / w) as f64 + 0.5) / w as f64 - 0.5) / 0.48).abs() < 0.6;
     let (missing, drawn) = (0..w * w)
         .filter(|&t| m.n_valid[t] > 0 && temperate(t))
-        .fold((0u64, 0u64), |(a, b), t| {
-            (a + u64::from(m.n_missing[t]), b + 256)
-        });
-    assert!(
-        (missing as f64) < 1e-3 * drawn as f64,
-        "missing {missing} of {drawn}"
-    );
+        .fold((0u64, 0u64), |(a, b), t| (a + u64::from(m.n_missing[t]), b + 256));
+    assert!((missing as f64) < 1e-3 * drawn as f64, "missing {missing} of {drawn}");
 }
 
 #[test]
@@ -107,18 +90,11 @@ fn plane_has_zero_curvature() {
     let m = maps(&atlas(&plane(1.0, 32), 512), 0.1, 96);
     // Away from the border (where neighbourhoods are truncated and flagged).
     let interior = |t: usize| m.n_border[t] == 0;
-    for feature in [
-        Feature::MeanCurvature,
-        Feature::GaussianCurvature,
-        Feature::BendingEnergy,
-    ] {
+    for feature in [Feature::MeanCurvature, Feature::GaussianCurvature, Feature::BendingEnergy] {
         let worst = median_where(&m, feature, interior, f64::abs);
         assert!(worst < 1e-3, "{feature:?}: {worst}");
     }
-    assert!(
-        m.summary.truncated_texels > 0,
-        "border texels must be flagged"
-    );
+    assert!(m.summary.truncated_texels > 0, "border texels must be flagged");
 }
 
 #[test]
@@ -139,8 +115,7 @@ fn torus_curvature_on_the_outer_and_inner_equator() {
     let m = maps(&atlas, 0.15, 256);
     let w = m.resolution as f64;
     // v of a texel: UV v = 0.02 + 0.96 t, t = angle / 2pi; outer equator t = 0 / 1, inner t = 1/2.
-    let angle =
-        |t: usize| std::f64::consts::TAU * ((((t / m.resolution) as f64 + 0.5) / w - 0.02) / 0.96);
+    let angle = |t: usize| std::f64::consts::TAU * ((((t / m.resolution) as f64 + 0.5) / w - 0.02) / 0.96);
     for (name, v) in [("outer", 0.0f64), ("inner", std::f64::consts::PI)] {
         let near = |t: usize| {
             let d = (angle(t) - v).rem_euclid(std::f64::consts::TAU);
@@ -151,14 +126,8 @@ fn torus_curvature_on_the_outer_and_inner_equator() {
         let h = median_where(&m, Feature::MeanCurvature, near, |x| x);
         let k = median_where(&m, Feature::GaussianCurvature, near, |x| x);
         eprintln!("torus {name}: H {h:.4} (true {h_true:.4}), K {k:.4} (true {k_true:.4})");
-        assert!(
-            (h - h_true).abs() < 0.05 * h_true.abs(),
-            "{name} H {h} vs {h_true}"
-        );
-        assert!(
-            (k - k_true).abs() < 0.05 * k_true.abs(),
-            "{name} K {k} vs {k_true}"
-        );
+        assert!((h - h_true).abs() < 0.05 * h_true.abs(), "{name} H {h} vs {h_true}");
+        assert!((k - k_true).abs() < 0.05 * k_true.abs(), "{name} K {k} vs {k_true}");
     }
 }
 

@@ -4,6 +4,8 @@ mod support;
 
 mod errors;
 mod features;
+mod geodesics;
 mod metric;
 mod rasterisation;
+mod reference;
 mod seams;

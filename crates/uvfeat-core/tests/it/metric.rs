@@ -29,10 +29,7 @@ fn affine_plane_distortion_is_exact_including_the_angle() {
             continue;
         }
         let [x1, x2] = atlas.buffers.sigma[t].map(f64::from);
-        assert!(
-            (x1 - s1).abs() < 1e-6 * s1 && (x2 - s2).abs() < 1e-6 * s1,
-            "sigma {x1} {x2} vs {s1} {s2}"
-        );
+        assert!((x1 - s1).abs() < 1e-6 * s1 && (x2 - s2).abs() < 1e-6 * s1, "sigma {x1} {x2} vs {s1} {s2}");
         assert!((f64::from(atlas.buffers.theta[t]) - theta).abs() < 1e-6);
         // The eigenvector of sigma_1 is the direction of largest stretch.
         let axis = DVec2::from_angle(theta);
@@ -72,15 +69,9 @@ fn lat_long_sphere_metric_matches_the_analytic_form() {
     let atlas = atlas(&uv_sphere(radius, 256, 128), 512);
     let (trace, area) = worst_metric_errors(&atlas, |_, v| {
         let lat = PI * (v - 0.5);
-        (
-            (TAU * radius * lat.cos() / SCALE).powi(2),
-            (PI * radius / SCALE).powi(2),
-        )
+        ((TAU * radius * lat.cos() / SCALE).powi(2), (PI * radius / SCALE).powi(2))
     });
-    assert!(
-        trace < 1e-3 && area < 1e-3,
-        "relative errors: E+G {trace:.2e}, sqrt(EG-F^2) {area:.2e}"
-    );
+    assert!(trace < 1e-3 && area < 1e-3, "relative errors: E+G {trace:.2e}, sqrt(EG-F^2) {area:.2e}");
 }
 
 #[test]
@@ -91,10 +82,7 @@ fn torus_metric_matches_the_analytic_form() {
         let ring = major + minor * (TAU * v).cos();
         ((TAU * ring / SCALE).powi(2), (TAU * minor / SCALE).powi(2))
     });
-    assert!(
-        trace < 1e-3 && area < 1e-3,
-        "relative errors: E+G {trace:.2e}, sqrt(EG-F^2) {area:.2e}"
-    );
+    assert!(trace < 1e-3 && area < 1e-3, "relative errors: E+G {trace:.2e}, sqrt(EG-F^2) {area:.2e}");
 }
 
 #[test]

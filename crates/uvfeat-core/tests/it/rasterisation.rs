@@ -24,10 +24,7 @@ fn max_position_error(atlas: &Atlas) -> f64 {
 
 #[test]
 fn positions_are_the_exact_interpolation_at_texel_centres() {
-    for (name, shape) in [
-        ("sphere", uv_sphere(1.0, 64, 32)),
-        ("torus", torus(2.0, 0.5, 64, 32)),
-    ] {
+    for (name, shape) in [("sphere", uv_sphere(1.0, 64, 32)), ("torus", torus(2.0, 0.5, 64, 32))] {
         let atlas = atlas(&shape, 512);
         let err = max_position_error(&atlas);
         assert!(err < 2e-6, "{name}: max |P - exact| = {err}");
@@ -45,10 +42,7 @@ fn every_texel_centre_inside_a_uv_triangle_is_covered_by_its_chart() {
             let b = barycentric(*uv, atlas.texel_centre(t));
             if b.iter().all(|&x| x > 1e-9) {
                 inside += 1;
-                assert_eq!(
-                    atlas.coverage.chart[t], atlas.topology.face_chart[face],
-                    "texel {t} of face {face}"
-                );
+                assert_eq!(atlas.coverage.chart[t], atlas.topology.face_chart[face], "texel {t} of face {face}");
                 assert!(atlas.coverage.face[t] >= 0);
             }
         }
@@ -72,12 +66,7 @@ fn regions_per_chart(atlas: &Atlas) -> Vec<usize> {
         seen[start] = true;
         while let Some(t) = stack.pop() {
             let (i, j) = (t % r, t / r);
-            let neighbours = [
-                (i.wrapping_sub(1), j),
-                (i + 1, j),
-                (i, j.wrapping_sub(1)),
-                (i, j + 1),
-            ];
+            let neighbours = [(i.wrapping_sub(1), j), (i + 1, j), (i, j.wrapping_sub(1)), (i, j + 1)];
             for (ni, nj) in neighbours {
                 if ni < r && nj < r {
                     let n = nj * r + ni;
@@ -95,18 +84,10 @@ fn regions_per_chart(atlas: &Atlas) -> Vec<usize> {
 #[test]
 fn each_chart_is_one_connected_texel_region() {
     for resolution in [512, 1024] {
-        for shape in [
-            uv_sphere(1.0, 48, 24),
-            torus(2.0, 0.5, 48, 24),
-            split_plane(16, true),
-            split_plane(16, false),
-        ] {
+        for shape in [uv_sphere(1.0, 48, 24), torus(2.0, 0.5, 48, 24), split_plane(16, true), split_plane(16, false)] {
             let atlas = atlas(&shape, resolution);
             let regions = regions_per_chart(&atlas);
-            assert!(
-                regions.iter().all(|&n| n == 1),
-                "regions per chart at {resolution}: {regions:?}"
-            );
+            assert!(regions.iter().all(|&n| n == 1), "regions per chart at {resolution}: {regions:?}");
         }
     }
 }

@@ -22,12 +22,7 @@ struct RoundTrip {
 /// reverse side's map.
 fn round_trip(atlas: &Atlas) -> RoundTrip {
     let r = atlas.resolution() as f64;
-    let mut out = RoundTrip {
-        crossed: 0,
-        worst_uv_texels: 0.0,
-        worst_position_texels: 0.0,
-        landed: 0.0,
-    };
+    let mut out = RoundTrip { crossed: 0, worst_uv_texels: 0.0, worst_position_texels: 0.0, landed: 0.0 };
     let mut landed = 0usize;
     for t in 0..atlas.coverage.chart.len() {
         let (chart, side) = (atlas.coverage.chart[t], atlas.coverage.border_side[t]);
@@ -37,9 +32,7 @@ fn round_trip(atlas: &Atlas) -> RoundTrip {
         let x = atlas.texel_centre(t);
         let across = cross_seam(atlas, x, chart).expect("border texel with a seam");
         let reverse = atlas.topology.sides[across.side].reverse as usize;
-        let back = atlas.frame.seam_maps[reverse]
-            .expect("reverse side has a map")
-            .apply(across.uv);
+        let back = atlas.frame.seam_maps[reverse].expect("reverse side has a map").apply(across.uv);
         assert_eq!(atlas.topology.sides[reverse].chart, across.chart);
         out.crossed += 1;
         out.worst_uv_texels = out.worst_uv_texels.max(back.distance(x) * r);
@@ -47,9 +40,8 @@ fn round_trip(atlas: &Atlas) -> RoundTrip {
         if let Some(there) = surface_point(atlas, across.uv, across.chart) {
             landed += 1;
             let texel_size = atlas.frame.distortion[here.face as usize].sigma1 / r;
-            out.worst_position_texels = out
-                .worst_position_texels
-                .max(here.position.distance(there.position) / texel_size);
+            out.worst_position_texels =
+                out.worst_position_texels.max(here.position.distance(there.position) / texel_size);
         }
     }
     out.landed = landed as f64 / out.crossed.max(1) as f64;
@@ -59,26 +51,10 @@ fn round_trip(atlas: &Atlas) -> RoundTrip {
 fn assert_round_trip(name: &str, atlas: &Atlas) {
     let trip = round_trip(atlas);
     eprintln!("{name}: {trip:?}");
-    assert!(
-        trip.crossed > 100,
-        "{name}: only {} seam texels",
-        trip.crossed
-    );
-    assert!(
-        trip.worst_uv_texels < 1e-6,
-        "{name}: round trip off by {} texels",
-        trip.worst_uv_texels
-    );
-    assert!(
-        trip.landed > 0.99,
-        "{name}: only {:.3} of crossings land next to the adjacent chart",
-        trip.landed
-    );
-    assert!(
-        trip.worst_position_texels < 1.0,
-        "{name}: 3D mismatch {} texel sizes",
-        trip.worst_position_texels
-    );
+    assert!(trip.crossed > 100, "{name}: only {} seam texels", trip.crossed);
+    assert!(trip.worst_uv_texels < 1e-6, "{name}: round trip off by {} texels", trip.worst_uv_texels);
+    assert!(trip.landed > 0.99, "{name}: only {:.3} of crossings land next to the adjacent chart", trip.landed);
+    assert!(trip.worst_position_texels < 1.0, "{name}: 3D mismatch {} texel sizes", trip.worst_position_texels);
 }
 
 #[test]
@@ -87,23 +63,9 @@ fn split_plane_seams_round_trip_with_rotation_anisotropy_and_mirroring() {
         let atlas = atlas(&split_plane(16, mirrored), 512);
         assert_eq!(atlas.topology.n_charts, 2);
         assert_eq!(atlas.topology.diagnostics.mirrored_uv_faces > 0, mirrored);
-        let seam = atlas
-            .frame
-            .seam_maps
-            .iter()
-            .flatten()
-            .next()
-            .expect("a seam")
-            .m;
+        let seam = atlas.frame.seam_maps.iter().flatten().next().expect("a seam").m;
         assert_eq!(seam.determinant() < 0.0, mirrored, "det M sign");
-        assert_round_trip(
-            if mirrored {
-                "mirrored plane"
-            } else {
-                "rotated plane"
-            },
-            &atlas,
-        );
+        assert_round_trip(if mirrored { "mirrored plane" } else { "rotated plane" }, &atlas);
     }
 }
 
@@ -125,19 +87,13 @@ fn transition_map_is_an_isometry_of_the_flat_plane() {
     for (dx, dy) in [(0.1, 0.0), (0.08, 0.05), (0.12, -0.04)] {
         // Offset in uv of the left chart for a 3D offset (dx, dy).
         let target = start + DVec2::new(0.8 * dx, 0.9 * dy);
-        let Located::Inside {
-            chart, uv, jumps, ..
-        } = locate(&atlas, start, 0, target, 3)
-        else {
+        let Located::Inside { chart, uv, jumps, .. } = locate(&atlas, start, 0, target, 3) else {
             panic!("sample lost");
         };
         assert_eq!((chart, jumps), (1, 1));
         let q = surface_point(&atlas, uv, chart).unwrap().position;
         let expected = p + DVec3::new(dx, dy, 0.0);
-        assert!(
-            q.distance(expected) < 1e-9,
-            "crossed to {q}, expected {expected}"
-        );
+        assert!(q.distance(expected) < 1e-9, "crossed to {q}, expected {expected}");
     }
 }
 
@@ -148,38 +104,21 @@ fn locate_walks_around_the_torus_across_its_self_adjacent_seam() {
     let margin = 0.02;
     let start = DVec2::new(margin + 0.01, 0.5);
     let target = start - DVec2::new(0.05, 0.0);
-    let Located::Inside {
-        chart,
-        uv,
-        jumps,
-        m_path,
-        ..
-    } = locate(&atlas, start, 0, target, 3)
-    else {
+    let Located::Inside { chart, uv, jumps, m_path, .. } = locate(&atlas, start, 0, target, 3) else {
         panic!("sample lost");
     };
     assert_eq!((chart, jumps), (0, 1));
     // The hinge map unfolds one triangle pair, so on a curved surface a long offset lands within a
     // fraction of a texel of the analytic place.
-    assert!(
-        uv.distance(DVec2::new(1.0 - margin - 0.04, 0.5)) < 0.5 / 1024.0,
-        "landed at {uv}"
-    );
-    assert!(
-        (m_path.determinant() - 1.0).abs() < 0.01,
-        "det M = {}",
-        m_path.determinant()
-    );
+    assert!(uv.distance(DVec2::new(1.0 - margin - 0.04, 0.5)) < 0.5 / 1024.0, "landed at {uv}");
+    assert!((m_path.determinant() - 1.0).abs() < 0.01, "det M = {}", m_path.determinant());
 }
 
 #[test]
 fn locate_reports_the_mesh_border() {
     let atlas = atlas(&split_plane(16, false), 512);
     let start = DVec2::new(0.1, 0.5);
-    assert_eq!(
-        locate(&atlas, start, 0, DVec2::new(-0.2, 0.5), 3),
-        Located::Border
-    );
+    assert_eq!(locate(&atlas, start, 0, DVec2::new(-0.2, 0.5), 3), Located::Border);
 }
 
 /// A plane whose every triangle is its own chart, shrunk to half size about its centroid (so every
@@ -188,8 +127,7 @@ fn exploded_plane(n: usize) -> uvfeat_core::shapes::ShapeMesh {
     let mut mesh = uvfeat_core::shapes::plane(1.0, n);
     let mut uvs = Vec::with_capacity(3 * mesh.faces.len());
     for (face, uv_face) in mesh.faces.iter().zip(mesh.uv_faces.iter_mut()) {
-        let corners =
-            face.map(|v| DVec2::new(mesh.positions[v as usize][0], mesh.positions[v as usize][1]));
+        let corners = face.map(|v| DVec2::new(mesh.positions[v as usize][0], mesh.positions[v as usize][1]));
         let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
         let base = uvs.len() as i64;
         uvs.extend(corners.map(|c| (0.02 + 0.96 * (centroid + 0.5 * (c - centroid))).to_array()));
@@ -215,42 +153,23 @@ fn the_walk_crosses_charts_smaller_than_a_texel_exactly() {
         let angle = k as f64 * std::f64::consts::TAU / 24.0;
         // A 3D offset of 0.2 (8 quads): 0.2 * 0.96 * 0.5 in the start chart's uv.
         let target = start + DVec2::from_angle(angle) * (0.2 * 0.96 * 0.5);
-        let Located::Inside {
-            chart: c,
-            uv,
-            face: Some(f),
-            jumps,
-            ..
-        } = locate(&atlas, start, chart, target, 64)
+        let Located::Inside { chart: c, uv, face: Some(f), jumps, .. } = locate(&atlas, start, chart, target, 64)
         else {
             panic!("walk lost the sample at angle {angle}");
         };
         assert!(jumps >= 8, "only {jumps} seams crossed");
         assert_eq!(topology.face_chart[f as usize], c);
-        let q = uvfeat_core::lookup::evaluate_face(&atlas, f, uv)
-            .unwrap()
-            .position;
+        let q = uvfeat_core::lookup::evaluate_face(&atlas, f, uv).unwrap().position;
         let expected = p + DVec3::new(angle.cos(), angle.sin(), 0.0) * 0.2;
-        assert!(
-            q.distance(expected) < 1e-9,
-            "walked to {q}, expected {expected}"
-        );
-        if !matches!(
-            uvfeat_core::relocation::march(&atlas, start, chart, target, 64),
-            Located::Inside { .. }
-        ) {
+        assert!(q.distance(expected) < 1e-9, "walked to {q}, expected {expected}");
+        if !matches!(uvfeat_core::relocation::march(&atlas, start, chart, target, 64), Located::Inside { .. }) {
             marched_lost += 1;
         }
     }
-    assert!(
-        marched_lost > 0,
-        "the march was expected to lose samples here"
-    );
+    assert!(marched_lost > 0, "the march was expected to lose samples here");
 }
 
 fn surface_point_of(atlas: &Atlas, uv: DVec2, chart: i32) -> DVec3 {
     let home = uvfeat_core::relocation::home(atlas, uv, chart).unwrap();
-    uvfeat_core::lookup::evaluate_face(atlas, home.face, home.point)
-        .unwrap()
-        .position
+    uvfeat_core::lookup::evaluate_face(atlas, home.face, home.point).unwrap().position
 }

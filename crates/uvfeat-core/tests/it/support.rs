@@ -7,17 +7,13 @@ use uvfeat_core::shapes::ShapeMesh;
 use uvfeat_core::{Atlas, AtlasOptions};
 
 pub fn triangle_mesh(shape: &ShapeMesh) -> TriangleMesh {
-    TriangleMesh::new(&shape.positions, &shape.faces, &shape.uvs, &shape.uv_faces)
-        .expect("valid analytic mesh")
+    TriangleMesh::new(&shape.positions, &shape.faces, &shape.uvs, &shape.uv_faces).expect("valid analytic mesh")
 }
 
 pub fn atlas(shape: &ShapeMesh, resolution: usize) -> Atlas {
     let mesh = triangle_mesh(shape);
     let topology = Arc::new(Topology::build(&mesh, 0.0).expect("topology"));
-    let options = AtlasOptions {
-        resolution,
-        ..AtlasOptions::default()
-    };
+    let options = AtlasOptions { resolution, ..AtlasOptions::default() };
     Atlas::new(topology, &mesh.positions, &options).expect("atlas")
 }
 
@@ -32,7 +28,5 @@ pub fn barycentric(uv: [DVec2; 3], p: DVec2) -> [f64; 3] {
 /// Exact interpolation of the face's geometric positions with barycentric weights `b`.
 pub fn interpolate(atlas: &Atlas, face: usize, b: [f64; 3]) -> DVec3 {
     let tri = atlas.topology.faces[face];
-    (0..3)
-        .map(|k| atlas.frame.positions[tri[k] as usize] * b[k])
-        .sum()
+    (0..3).map(|k| atlas.frame.positions[tri[k] as usize] * b[k]).sum()
 }
