@@ -4,6 +4,7 @@ mod support;
 
 mod errors;
 mod features;
+mod fit;
 mod metric;
 mod rasterisation;
 mod seams;
