@@ -5,7 +5,7 @@
 use crate::support::atlas;
 use glam::{DMat3, DQuat, DVec2, DVec3};
 use uvfeat_core::features::{CurvatureMethod, Feature};
-use uvfeat_core::output::{ComputeSettings, FeatureMaps};
+use uvfeat_core::output::{per_vertex_directions, ComputeSettings, FeatureMaps};
 use uvfeat_core::sampling::centre_at;
 use uvfeat_core::shapes::{cylinder, ellipsoid, torus, uv_sphere, ShapeMesh};
 use uvfeat_core::Atlas;
@@ -240,4 +240,24 @@ fn fit_directions_turn_with_a_rigid_motion() {
         angles.len() > 1000 && median(angles) < 0.01,
         "worst {worst}"
     );
+}
+
+#[test]
+fn per_vertex_directions_of_the_torus_match_the_analytic_ones() {
+    let (major, minor) = (2.0, 0.5);
+    let shape = torus(major, minor, 192, 96);
+    let atlas = atlas(&shape, 512);
+    let settings = ComputeSettings::new(vec![Feature::MeanCurvature], 0.15);
+    let directions = per_vertex_directions(&atlas, &settings);
+    assert_eq!(directions.len(), shape.positions.len());
+    let truth = torus_truth(major, minor);
+    let (mut e1, mut e2) = (Vec::new(), Vec::new());
+    for (p, d) in shape.positions.iter().zip(&directions) {
+        let (d1, d2, _, _) = truth(DVec3::from(*p));
+        e1.push(line_angle(DVec3::from(d[0].map(f64::from)), d1));
+        e2.push(line_angle(DVec3::from(d[1].map(f64::from)), d2));
+    }
+    let (e1, e2) = (median(e1), median(e2));
+    eprintln!("torus per vertex: d1 {e1:.3} deg, d2 {e2:.3} deg");
+    assert!(e1 < 2.0 && e2 < 2.0, "d1 {e1}, d2 {e2}");
 }
