@@ -103,11 +103,12 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
     names = feature_names(args.feature)
     radii = [r.strip() for r in args.radius.split(",") if r.strip()]
     os.makedirs(args.out, exist_ok=True)
-    options = {"query": args.query, "standard_error": args.standard_error}
+    options = {"query": args.query, "standard_error": args.standard_error, "method": args.method}
     summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
                "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,
                             "compute_resolution": args.compute_resolution, "adaptive": args.adaptive,
-                            "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query}}
+                            "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query,
+                            "method": args.method}}
     with _steps(console, 1 + 3 * len(radii)) as advance:
         advance("pre-processing + rasterising", done=False)
         atlas = Atlas(mesh, resolution=args.resolution, precision="f16" if args.paper_mode else "f32")
@@ -128,6 +129,8 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
             per_vertex = {name: m.per_vertex() for name, m in maps.items()}
             tag = _radius_tag(radius)
             arrays = {f"{n}": v for n, v in per_vertex.items()}
+            if args.method == "fit":
+                arrays["principal_directions"] = first.per_vertex_directions()
             np.savez_compressed(os.path.join(args.out, f"per_vertex_r{tag}.npz"), positions=mesh.positions,
                                 faces=mesh.faces, radius=first.radius, **arrays)
             ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
@@ -231,6 +234,8 @@ def build_parser() -> argparse.ArgumentParser:
     compute.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
     compute.add_argument("--seed", type=int, default=0)
     compute.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
+    compute.add_argument("--method", choices=("integral", "fit"), default="integral",
+                         help="curvature estimators: integral invariants or the quadric fit (adds principal directions)")
     compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
     compute.set_defaults(handler=_on_file(_write_features))
 

@@ -148,7 +148,7 @@ fn vertex_angle(vertex: usize, seed: u64) -> f64 {
 }
 
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
-/// at the vertex's first corner UV (a line field has no sign, so texels cannot be averaged
+/// at one corner UV of the vertex (a line field has no sign, so texels cannot be averaged
 /// bilinearly like scalar maps); NaN where the fit failed.
 pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[[f32; 3]; 2]> {
     let settings = ComputeSettings {
@@ -161,10 +161,15 @@ pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[
         .par_iter()
         .enumerate()
         .map_init(Vec::new, |scratch, (vertex, list)| {
-            list.first().map_or([[f32::NAN; 3]; 2], |&(uv, _)| {
-                let psi = vertex_angle(vertex, settings.seed);
-                evaluate_point(atlas, uv, psi, &settings, &patterns, scratch).directions
-            })
+            // The first corner where the fit succeeds: a corner UV on a chart's edge may fall on
+            // a gutter texel of the raster, which has no centre.
+            let psi = vertex_angle(vertex, settings.seed);
+            list.iter()
+                .map(|&(uv, _)| {
+                    evaluate_point(atlas, uv, psi, &settings, &patterns, scratch).directions
+                })
+                .find(|d| d[0][0].is_finite())
+                .unwrap_or([[f32::NAN; 3]; 2])
         })
         .collect();
     atlas
