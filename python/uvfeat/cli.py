@@ -179,7 +179,7 @@ def _cmd_demo(args) -> int:
     args.out = os.path.join(root, "features")
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.compute_resolution, args.adaptive, args.paper_mode = 256, args.compute_resolution, False, False
-    args.seed, args.query, args.standard_error = 0, "texture", False
+    args.seed, args.query, args.standard_error, args.method = 0, "texture", False, "integral"
     _write_features(mesh, args, console, [], time.perf_counter())
     return 0
 

@@ -190,7 +190,13 @@ impl PyFeatureMaps {
         self.inner
             .directions
             .as_ref()
-            .map(|d| to_numpy(py, d.iter().flatten().flatten().copied().collect(), &[w, w, 2, 3]))
+            .map(|d| {
+                to_numpy(
+                    py,
+                    d.iter().flatten().flatten().copied().collect(),
+                    &[w, w, 2, 3],
+                )
+            })
             .transpose()
     }
 
@@ -213,7 +219,11 @@ impl PyFeatureMaps {
         let (settings, core) = (&self.settings, atlas.core());
         let directions = guarded(py, || Ok(per_vertex_directions(core, settings)))?;
         let n = directions.len();
-        to_numpy(py, directions.into_iter().flatten().flatten().collect(), &[n, 2, 3])
+        to_numpy(
+            py,
+            directions.into_iter().flatten().flatten().collect(),
+            &[n, 2, 3],
+        )
     }
 
     #[getter]
