@@ -1,6 +1,6 @@
 """Benchmark of the feature pipeline (issue: multi-scale features).
 
-    .venv/bin/python benches/bench_features.py [--mesh PATH] [--feature mean_curvature]
+    .venv/bin/python benches/bench_features.py [--mesh PATH] [--feature mean_curvature] [--method fit]
 
 Default configuration (SPEC §1.10): 1024² geometry buffers, 512² computation texture, 256 samples.
 Prints ms per stage and in total, then the time against the radius (1–16 % of the diagonal) and
@@ -40,15 +40,16 @@ def main() -> None:
     parser.add_argument("--feature", default="mean_curvature")
     parser.add_argument("--radii", default="1%,2%,4%,8%,16%")
     parser.add_argument("--samples", default="64,100,256,400")
+    parser.add_argument("--method", choices=("integral", "fit"), default="integral", help="curvature estimators")
     args = parser.parse_args()
 
     mesh = benchmark_mesh(args.mesh)
     _, pre_ms = timed(lambda: mesh.topology)
     threads = os.environ.get("RAYON_NUM_THREADS", str(os.cpu_count()))
-    print(f"{mesh.name}: {mesh.n_faces} faces, {mesh.n_charts} charts; {threads} threads; feature {args.feature}")
+    print(f"{mesh.name}: {mesh.n_faces} faces, {mesh.n_charts} charts; {threads} threads; feature {args.feature}, method {args.method}")
     atlas, raster_ms = timed(lambda: uvfeat.Atlas(mesh, 1024))
     _, frame_ms = timed(lambda: atlas.update(mesh.positions))
-    maps, features_ms = timed(lambda: atlas.compute(args.feature, "4%"))
+    maps, features_ms = timed(lambda: atlas.compute(args.feature, "4%", method=args.method))
     _, vertex_ms = timed(lambda: maps[args.feature].per_vertex())
     print("\ndefault configuration, r = 4 % of the diagonal")
     print(f"  pre-processing (once)      {pre_ms:9.1f} ms")
@@ -61,14 +62,14 @@ def main() -> None:
     print("\nradius sweep (256 samples)")
     print(f"  {'radius':>8}{'ms':>10}{'valid/texel':>13}{'missing %':>11}")
     for radius in args.radii.split(","):
-        maps, ms = timed(lambda: atlas.compute(args.feature, radius))
+        maps, ms = timed(lambda: atlas.compute(args.feature, radius, method=args.method))
         s = maps[args.feature].summary
         print(f"  {radius:>8}{ms:>10.1f}{s['mean_valid_samples']:>13.1f}{100 * s['missing_fraction']:>11.3f}")
 
     print("\nsample sweep (r = 4 %)")
     print(f"  {'samples':>8}{'ms':>10}{'ms/sample':>11}")
     for n in (int(x) for x in args.samples.split(",")):
-        _, ms = timed(lambda: atlas.compute(args.feature, "4%", samples=n))
+        _, ms = timed(lambda: atlas.compute(args.feature, "4%", samples=n, method=args.method))
         print(f"  {n:>8}{ms:>10.1f}{ms / n:>11.2f}")
 
 

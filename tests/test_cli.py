@@ -50,3 +50,18 @@ def test_compute_command_writes_per_vertex_files_maps_and_summary(tmp_path):
         assert (out / name).stat().st_size > 0
     assert main(["compute", str(path), "--feature", "bogus", "--out", str(out)]) == 2
     assert main(["compute", str(path), "--radius", "-1", "--out", str(out)]) == 2
+
+
+def test_compute_command_with_the_fit_saves_principal_directions(tmp_path):
+    import numpy as np
+
+    path = tmp_path / "ico.obj"
+    trimesh.creation.icosphere(3).export(path)
+    out = tmp_path / "out"
+    args = ["compute", str(path), "--feature", "k1", "--radius", "0.3", "--method", "fit", "--resolution", "256",
+            "--compute-resolution", "64", "--samples", "64", "--out", str(out)]
+    assert main(args) == 0
+    data = np.load(out / "per_vertex_r0p3.npz")
+    assert abs(np.median(data["k1"]) - 1.0) < 0.05  # unit icosphere
+    assert data["principal_directions"].shape == (len(data["positions"]), 2, 3)
+    assert json.loads((out / "summary.json").read_text())["settings"]["method"] == "fit"

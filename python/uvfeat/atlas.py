@@ -216,7 +216,9 @@ class Atlas:
             ``margin`` (1.25), ``max_jumps`` (32), ``relocation`` ("walk" | "march"), ``criterion`` ("euclidean" | "geodesic"),
             ``gaussian_method`` ("moments" | "geodesic_area"), ``volume_weighting``
             ("distance" | "uniform"), ``rho_min`` (0.1, fraction of r), ``flat_tol`` (1e-3),
-            ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct").
+            ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct"),
+            ``method`` ("integral" | "fit": H, K, k1, k2, shape index and curvedness from the
+            quadric fit, which also gives ``principal_directions`` and ``fit_residual``).
 
         Returns
         -------

@@ -110,11 +110,12 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
     names = feature_names(args.feature)
     radii = [r.strip() for r in args.radius.split(",") if r.strip()]
     os.makedirs(args.out, exist_ok=True)
-    options = {"query": args.query, "standard_error": args.standard_error}
+    options = {"query": args.query, "standard_error": args.standard_error, "method": args.method}
     summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
                "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,
                             "compute_resolution": args.compute_resolution, "adaptive": args.adaptive,
-                            "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query}}
+                            "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query,
+                            "method": args.method}}
     with _steps(console, 1 + 3 * len(radii)) as advance:
         advance("pre-processing + rasterising", done=False)
         atlas = Atlas(mesh, resolution=args.resolution, precision="f16" if args.paper_mode else "f32")
@@ -135,6 +136,8 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
             per_vertex = {name: m.per_vertex() for name, m in maps.items()}
             tag = _radius_tag(radius)
             arrays = {f"{n}": v for n, v in per_vertex.items()}
+            if args.method == "fit":
+                arrays["principal_directions"] = first.per_vertex_directions()
             np.savez_compressed(os.path.join(args.out, f"per_vertex_r{tag}.npz"), positions=mesh.positions,
                                 faces=mesh.faces, radius=first.radius, **arrays)
             ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
@@ -178,7 +181,7 @@ def _write_comparison(mesh, args, console, load_notes: list[str], started: float
             warnings.simplefilter("always")
             result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
                              compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
-                             seed=args.seed, query=args.query)
+                             seed=args.seed, query=args.query, method=args.method)
         advance("pictures")
         summary = result.to_dict()
         summary["warnings"] = load_notes + sorted({str(w.message) for w in caught})
@@ -224,7 +227,7 @@ def _cmd_demo(args) -> int:
     args.out = os.path.join(root, "features")
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.compute_resolution, args.adaptive, args.paper_mode = 256, args.compute_resolution, False, False
-    args.seed, args.query, args.standard_error = 0, "texture", False
+    args.seed, args.query, args.standard_error, args.method = 0, "texture", False, "integral"
     _write_features(mesh, args, console, [], time.perf_counter())
     return 0
 
@@ -258,6 +261,8 @@ def _add_feature_command_options(parser: argparse.ArgumentParser, radius_note: s
     parser.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
+    parser.add_argument("--method", choices=("integral", "fit"), default="integral",
+                        help="curvature estimators: integral invariants or the quadric fit (adds principal directions)")
 
 
 def build_parser() -> argparse.ArgumentParser:

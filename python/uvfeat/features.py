@@ -30,6 +30,7 @@ DEFAULT_OPTIONS = {
     "relocation": "walk",
     "criterion": "euclidean",
     "gaussian_method": "moments",
+    "method": "integral",
     "volume_weighting": "distance",
     "rho_min": 0.1,
     "flat_tol": 1e-3,
@@ -98,6 +99,11 @@ class FeatureMap:
     ``[j, i]`` with v up, NaN outside charts. Diagnostics maps have the same layout: ``n_valid``,
     ``n_missing`` (relocation failed), ``n_border`` (samples dropped at a mesh border: the
     neighbourhood is truncated there and values are biased; see ``truncated``).
+
+    With ``method="fit"`` the curvature features come from the quadric fit, and
+    ``principal_directions`` (``(W_c, W_c, 2, 3)``: unit ``d1`` of ``k1`` and ``d2`` of ``k2``, a
+    line field whose sign is arbitrary) and ``fit_residual`` (``(W_c, W_c)``, RMS distance to the
+    fit relative to r) are set (a leading ``n_radii`` axis for a stack); None otherwise.
     """
 
     name: str
@@ -107,6 +113,8 @@ class FeatureMap:
     n_missing: np.ndarray
     n_border: np.ndarray
     standard_error: np.ndarray | None = None
+    principal_directions: np.ndarray | None = None
+    fit_residual: np.ndarray | None = None
     summary: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
     _atlas: object = field(default=None, repr=False)
@@ -134,12 +142,23 @@ class FeatureMap:
         values = [per_feature[self._index] for per_feature in self._cache[query]]
         return values[0] if not self.is_stack else np.stack(values)
 
+    def per_vertex_directions(self) -> np.ndarray:
+        """Principal directions of the fit at every vertex, ``(n_vertices, 2, 3)`` (``(n_radii,
+        n_vertices, 2, 3)`` for a stack): ``[d1, d2]``, evaluated directly at the vertex (a line
+        field cannot be averaged from texels like a scalar). Needs ``method="fit"``."""
+        if self.principal_directions is None:
+            raise InvalidParameterError('principal directions need method="fit" in compute()')
+        if "directions" not in self._cache:
+            self._cache["directions"] = [maps.per_vertex_directions(self._atlas._core) for maps in self._maps]
+        values = self._cache["directions"]
+        return values[0] if not self.is_stack else np.stack(values)
+
 
 def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
     return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), float(opts["tau"]), int(seed),
                                   float(opts["margin"]), bool(opts["grow_margin"]), int(opts["max_jumps"]), opts["relocation"], opts["criterion"],
                                   opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
-                                  float(opts["flat_tol"]), bool(opts["standard_error"]))
+                                  float(opts["flat_tol"]), bool(opts["standard_error"]), opts["method"])
 
 
 def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):
@@ -193,6 +212,8 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
             n_missing=gather(lambda m: m.n_missing),
             n_border=gather(lambda m: m.n_border),
             standard_error=None if errors[0] is None else (np.stack(errors) if stack else errors[0]),
+            principal_directions=None if opts["method"] != "fit" else gather(lambda m: m.principal_directions),
+            fit_residual=None if opts["method"] != "fit" else gather(lambda m: m.fit_residual),
             summary=all_maps[0].summary if not stack else [m.summary for m in all_maps],
             settings=described,
             _atlas=atlas,

@@ -31,7 +31,8 @@ from .mesh import Mesh
 GAUSSIAN_METHODS = ("moments", "geodesic_area", "exact_geodesic_area")
 
 #: Options of the reference, with the parametric defaults (SPEC §1.10) where they are shared.
-DEFAULT_OPTIONS = {"gaussian_method": "moments", "volume_weighting": "distance", "rho_min": 0.1, "flat_tol": 1e-3}
+DEFAULT_OPTIONS = {"gaussian_method": "moments", "volume_weighting": "distance", "rho_min": 0.1, "flat_tol": 1e-3,
+                   "method": "integral"}
 
 
 def _vertex_indices(vertices, n_vertices: int) -> np.ndarray | None:
@@ -89,7 +90,8 @@ class Reference:
         **options
             ``gaussian_method`` (``"moments"``, ``"geodesic_area"``, ``"exact_geodesic_area"``),
             ``volume_weighting`` (``"distance"``, ``"uniform"``), ``rho_min`` (fraction of r,
-            0.1), ``flat_tol`` (1e-3): as for the parametric side.
+            0.1), ``flat_tol`` (1e-3), ``method`` (``"integral"``, or ``"fit"``: the quadric fit of
+            the neighbourhood's vertices, Voronoi-area weighted): as for the parametric side.
 
         Returns
         -------
@@ -106,7 +108,8 @@ class Reference:
         indices = _vertex_indices(vertices, self.mesh.n_vertices)
         started = time.perf_counter()
         values, samples = self._core.compute(names, r, str(opts["gaussian_method"]), str(opts["volume_weighting"]),
-                                             float(opts["rho_min"]), float(opts["flat_tol"]), indices)
+                                             float(opts["rho_min"]), float(opts["flat_tol"]), str(opts["method"]),
+                                             indices)
         self.last_timings = {"connectivity_s": self.connectivity_s, "estimation_s": time.perf_counter() - started}
         self.last_samples = samples
         lonely = int((samples == 0).sum())

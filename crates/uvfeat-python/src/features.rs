@@ -7,8 +7,8 @@ use crate::error::{guarded, to_py};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use uvfeat_core::features::{Feature, GaussianMethod, VolumeWeighting};
-use uvfeat_core::output::{per_vertex, ComputeSettings, FeatureMaps, VertexQuery};
+use uvfeat_core::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeighting};
+use uvfeat_core::output::{per_vertex, per_vertex_directions, ComputeSettings, FeatureMaps, VertexQuery};
 use uvfeat_core::relocation::Relocation;
 use uvfeat_core::sampling::{neighbourhood_tile, Criterion};
 use uvfeat_core::UvfeatError;
@@ -30,11 +30,16 @@ pub(crate) fn volume_weighting_named(value: &str) -> PyResult<VolumeWeighting> {
     choice("volume_weighting", value, &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)])
 }
 
+/// The curvature method of its public name.
+pub(crate) fn curvature_method_named(value: &str) -> PyResult<CurvatureMethod> {
+    choice("method", value, &[("integral", CurvatureMethod::Integral), ("fit", CurvatureMethod::Fit)])
+}
+
 /// Builds and validates core settings from the Python keyword arguments.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
 #[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, tau, seed, margin, grow_margin, max_jumps,
-                    relocation, criterion, gaussian_method, volume_weighting, rho_min, flat_tol, standard_error))]
+                    relocation, criterion, gaussian_method, volume_weighting, rho_min, flat_tol, standard_error, method))]
 pub fn compute_settings(
     features: Vec<String>,
     radius: f64,
@@ -53,6 +58,7 @@ pub fn compute_settings(
     rho_min: f64,
     flat_tol: f64,
     standard_error: bool,
+    method: &str,
 ) -> PyResult<PySettings> {
     let mut s = ComputeSettings::new(feature_list(&features)?, radius);
     s.samples = samples;
@@ -72,6 +78,7 @@ pub fn compute_settings(
         &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
     )?;
     s.volume_weighting = volume_weighting_named(volume_weighting)?;
+    s.method = curvature_method_named(method)?;
     s.rho_min_fraction = rho_min;
     s.flat_tol = flat_tol;
     s.standard_errors = standard_error;
@@ -137,6 +144,31 @@ impl PyFeatureMaps {
     #[getter]
     fn second_stage<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<bool>>> {
         self.map(py, self.inner.second_stage.clone())
+    }
+
+    /// (W_c, W_c, 2, 3) principal directions `[d1, d2]` of the fit, or None unless method "fit".
+    #[getter]
+    fn principal_directions<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
+        let w = self.inner.resolution;
+        self.inner
+            .directions
+            .as_ref()
+            .map(|d| to_numpy(py, d.iter().flatten().flatten().copied().collect(), &[w, w, 2, 3]))
+            .transpose()
+    }
+
+    /// (W_c, W_c) relative RMS residual of the fit, or None unless method "fit".
+    #[getter]
+    fn fit_residual<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArrayDyn<f32>>>> {
+        self.inner.fit_residual.as_ref().map(|r| self.map(py, r.clone())).transpose()
+    }
+
+    /// (n_vertices, 2, 3) principal directions of the fit, evaluated at every vertex.
+    fn per_vertex_directions<'py>(&self, py: Python<'py>, atlas: &PyAtlas) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        let (settings, core) = (&self.settings, atlas.core());
+        let directions = guarded(py, || Ok(per_vertex_directions(core, settings)))?;
+        let n = directions.len();
+        to_numpy(py, directions.into_iter().flatten().flatten().collect(), &[n, 2, 3])
     }
 
     #[getter]

@@ -2,7 +2,7 @@
 
 use crate::arrays::{rows, to_numpy};
 use crate::error::guarded;
-use crate::features::{choice, feature_list, volume_weighting_named};
+use crate::features::{choice, curvature_method_named, feature_list, volume_weighting_named};
 use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use uvfeat_core::reference::{ReferenceGaussian, ReferenceMesh, ReferenceSettings};
@@ -45,7 +45,7 @@ impl PyReferenceMesh {
     /// `(values, samples)`: one (n,) float64 array per feature and the (n,) sample counts, at
     /// every input vertex or at `vertices` (GIL released, parallel).
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (features, radius, gaussian_method, volume_weighting, rho_min, flat_tol, vertices=None))]
+    #[pyo3(signature = (features, radius, gaussian_method, volume_weighting, rho_min, flat_tol, method, vertices=None))]
     fn compute<'py>(
         &self,
         py: Python<'py>,
@@ -55,6 +55,7 @@ impl PyReferenceMesh {
         volume_weighting: &str,
         rho_min: f64,
         flat_tol: f64,
+        method: &str,
         vertices: Option<PyReadonlyArray1<'_, i64>>,
     ) -> PyResult<PerVertex<'py>> {
         let mut settings = ReferenceSettings::new(feature_list(&features)?, radius);
@@ -70,6 +71,7 @@ impl PyReferenceMesh {
         settings.volume_weighting = volume_weighting_named(volume_weighting)?;
         settings.rho_min_fraction = rho_min;
         settings.flat_tol = flat_tol;
+        settings.method = curvature_method_named(method)?;
         let vertices = vertices.map(|v| v.as_slice().map(<[i64]>::to_vec)).transpose()?;
         let inner = &self.inner;
         let result = guarded(py, || inner.compute(&settings, vertices.as_deref()))?;

@@ -7,6 +7,7 @@ mod gaussian_curvature;
 mod mean_curvature;
 mod open_volume;
 mod principal_curvatures;
+mod quadric_fit;
 mod shape_index;
 mod statistics;
 mod volume_invariant;
@@ -20,6 +21,7 @@ pub use gaussian_curvature::{
 pub use mean_curvature::{mean_curvature, mean_curvature_error, radial_correction};
 pub use open_volume::{ball_volume, open_volume, open_volume_error};
 pub use principal_curvatures::principal_curvatures;
+pub use quadric_fit::{quadric_fit, QuadricFit};
 pub use shape_index::shape_index;
 pub use statistics::{NeighbourhoodStats, StatsSettings, VolumeWeighting, WeightedSums};
 pub use volume_invariant::volume_invariant;
@@ -95,6 +97,17 @@ impl Feature {
     }
 }
 
+/// Where the curvature features (H, K, k1, k2, shape index, curvedness) come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CurvatureMethod {
+    /// The paper's integral invariants (default).
+    #[default]
+    Integral,
+    /// The weighted least-squares quadric of [`quadric_fit`], which also gives principal
+    /// directions and a residual.
+    Fit,
+}
+
 /// Settings of the estimators.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EstimatorSettings {
@@ -106,6 +119,8 @@ pub struct EstimatorSettings {
     pub flat_tol: f64,
     /// Weighting of the volume integrands.
     pub volume_weighting: VolumeWeighting,
+    /// Source of the curvature features.
+    pub method: CurvatureMethod,
 }
 
 /// Every feature of one neighbourhood.
@@ -117,21 +132,17 @@ pub struct Estimates {
     pub clamped: bool,
 }
 
-/// Evaluates every estimator on the sums of one neighbourhood.
-pub fn estimate(stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> Estimates {
+/// Evaluates every estimator on the sums of one neighbourhood; with [`CurvatureMethod::Fit`] the
+/// curvature features come from `fit` instead (NaN where the fit failed), the volumes and bending
+/// energy stay integral.
+pub fn estimate(stats: &NeighbourhoodStats, fit: Option<&QuadricFit>, settings: &EstimatorSettings) -> Estimates {
     let (r, weighting) = (settings.radius, settings.volume_weighting);
-    let h = mean_curvature(&stats.elevation, &stats.radial, r, weighting);
-    let (k, (k1, k2, clamped)) = match settings.gaussian_method {
-        GaussianMethod::Moments => {
-            let k = gaussian_curvature_moments(&stats.normal_curvature);
-            let spread = (2.0 * stats.normal_curvature.variance()).sqrt();
-            let hm = stats.normal_curvature.mean();
-            (k, (hm + spread, hm - spread, false))
-        }
-        GaussianMethod::GeodesicArea => {
-            let k = gaussian_curvature_geodesic_area(&stats.geodesic_disk, r);
-            (k, principal_curvatures(h, k))
-        }
+    let integral_h = mean_curvature(&stats.elevation, &stats.radial, r, weighting);
+    let (h, k, (k1, k2, clamped)) = if settings.method == CurvatureMethod::Fit {
+        fit.map_or((f64::NAN, f64::NAN, (f64::NAN, f64::NAN, false)), |f| (f.mean, f.gaussian, (f.k1, f.k2, false)))
+    } else {
+        let (k, pair) = integral_curvatures(stats, integral_h, settings);
+        (integral_h, k, pair)
     };
     let c = curvedness(k1, k2);
     let values = [
@@ -146,6 +157,23 @@ pub fn estimate(stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> Est
         c,
     ];
     Estimates { values, clamped }
+}
+
+/// `K` and `(k1, k2, clamped)` of the integral estimators, given their `H`.
+fn integral_curvatures(stats: &NeighbourhoodStats, h: f64, settings: &EstimatorSettings) -> (f64, (f64, f64, bool)) {
+    let r = settings.radius;
+    match settings.gaussian_method {
+        GaussianMethod::Moments => {
+            let k = gaussian_curvature_moments(&stats.normal_curvature);
+            let spread = (2.0 * stats.normal_curvature.variance()).sqrt();
+            let hm = stats.normal_curvature.mean();
+            (k, (hm + spread, hm - spread, false))
+        }
+        GaussianMethod::GeodesicArea => {
+            let k = gaussian_curvature_geodesic_area(&stats.geodesic_disk, r);
+            (k, principal_curvatures(h, k))
+        }
+    }
 }
 
 /// The standard error of `feature`'s Monte Carlo estimate relative to its natural unit (`1/r`

@@ -5,7 +5,7 @@ use super::pixel::{evaluate_point, Patterns, PixelResult};
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::error::Result;
-use crate::features::Feature;
+use crate::features::{CurvatureMethod, Feature};
 use crate::sampling::pixel_angle;
 use glam::DVec2;
 use rayon::prelude::*;
@@ -49,6 +49,11 @@ pub struct FeatureMaps {
     pub n_border: Vec<u32>,
     /// Texels that ran stage 2 (adaptive sampling).
     pub second_stage: Vec<bool>,
+    /// Principal directions `[d1, d2]` of every texel (unit 3D vectors, a line field: the sign is
+    /// arbitrary), with the curvature method `Fit`; NaN off the charts.
+    pub directions: Option<Vec<[[f32; 3]; 2]>>,
+    /// Relative RMS residual of the fit per texel, with the curvature method `Fit`.
+    pub fit_residual: Option<Vec<f32>>,
     /// Totals.
     pub summary: MapSummary,
 }
@@ -82,6 +87,9 @@ impl FeatureMaps {
         let standard_errors = settings
             .standard_errors
             .then(|| settings.features.iter().map(|feat| pick(&|p| p.errors[feat.index()])).collect());
+        let fitted = settings.method == CurvatureMethod::Fit;
+        let directions = fitted.then(|| pixels.iter().map(|p| p.directions).collect());
+        let fit_residual = fitted.then(|| pick(&|p| p.residual));
         let evaluated: Vec<&PixelResult> = pixels.iter().filter(|p| p.counts.valid > 0).collect();
         let n = evaluated.len().max(1) as f64;
         let drawn: u64 = evaluated.iter().map(|p| u64::from(p.counts.valid + p.counts.missing + p.counts.border)).sum();
@@ -103,6 +111,8 @@ impl FeatureMaps {
             n_missing: pixels.iter().map(|p| p.counts.missing).collect(),
             n_border: pixels.iter().map(|p| p.counts.border).collect(),
             second_stage: pixels.iter().map(|p| p.second_stage).collect(),
+            directions,
+            fit_residual,
             summary,
         }
     }

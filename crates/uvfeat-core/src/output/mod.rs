@@ -7,6 +7,6 @@ mod pixel;
 mod settings;
 
 pub use feature_map::{FeatureMaps, MapSummary};
-pub use per_vertex::{per_vertex, VertexQuery};
+pub use per_vertex::{per_vertex, per_vertex_directions, VertexQuery};
 pub use pixel::{evaluate_point, Patterns, PixelResult};
 pub use settings::ComputeSettings;

@@ -5,6 +5,7 @@ use super::feature_map::FeatureMaps;
 use super::pixel::{evaluate_point, Patterns};
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
+use crate::features::CurvatureMethod;
 use crate::sampling::pcg_hash;
 use glam::DVec2;
 use rayon::prelude::*;
@@ -85,7 +86,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
                 found.extend(list.iter().filter_map(|&(uv, chart)| lookup(maps, uv, chart)));
             }
             if found.is_empty() {
-                let psi = TAU * f64::from(pcg_hash(vertex as u32 ^ settings.seed as u32)) / 4_294_967_296.0;
+                let psi = vertex_angle(vertex, settings.seed);
                 found.extend(list.iter().map(|&(uv, _)| {
                     let result = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
                     maps.features.iter().map(|f| f64::from(result.values[f.index()])).collect()
@@ -105,4 +106,31 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
         .collect();
     let ids = &atlas.topology.vertex_ids;
     (0..maps.features.len()).map(|f| ids.iter().map(|&g| geometric[g as usize][f] as f32).collect()).collect()
+}
+
+/// The pattern rotation of a vertex evaluated directly.
+fn vertex_angle(vertex: usize, seed: u64) -> f64 {
+    TAU * f64::from(pcg_hash(vertex as u32 ^ seed as u32)) / 4_294_967_296.0
+}
+
+/// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
+/// at one corner UV of the vertex (a line field has no sign, so texels cannot be averaged
+/// bilinearly like scalar maps); NaN where the fit failed.
+pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[[f32; 3]; 2]> {
+    let settings = ComputeSettings { method: CurvatureMethod::Fit, standard_errors: false, ..settings.clone() };
+    let patterns = Patterns::new(&settings);
+    let geometric: Vec<[[f32; 3]; 2]> = corners(atlas)
+        .par_iter()
+        .enumerate()
+        .map_init(Vec::new, |scratch, (vertex, list)| {
+            // The first corner where the fit succeeds: a corner UV on a chart's edge may fall on
+            // a gutter texel of the raster, which has no centre.
+            let psi = vertex_angle(vertex, settings.seed);
+            list.iter()
+                .map(|&(uv, _)| evaluate_point(atlas, uv, psi, &settings, &patterns, scratch).directions)
+                .find(|d| d[0][0].is_finite())
+                .unwrap_or([[f32::NAN; 3]; 2])
+        })
+        .collect();
+    atlas.topology.vertex_ids.iter().map(|&g| geometric[g as usize]).collect()
 }

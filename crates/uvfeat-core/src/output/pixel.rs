@@ -3,8 +3,10 @@
 
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
-use crate::features::{estimate, relative_standard_error, NeighbourhoodStats};
-use crate::sampling::{centre_at, disk_pattern, gather, gather_covering, Sample, SampleCounts, TURNS};
+use crate::features::{
+    estimate, quadric_fit, relative_standard_error, CurvatureMethod, NeighbourhoodStats, QuadricFit,
+};
+use crate::sampling::{centre_at, disk_pattern, gather, gather_covering, Centre, Sample, SampleCounts, TURNS};
 use glam::DVec2;
 
 /// Interleaved batches behind the standard errors.
@@ -44,6 +46,10 @@ pub struct PixelResult {
     pub second_stage: bool,
     /// `H^2 - K < 0` was clamped for the principal curvatures.
     pub clamped: bool,
+    /// Principal directions `d1, d2` of the fit (NaN unless the curvature method is the fit).
+    pub directions: [[f32; 3]; 2],
+    /// Relative RMS residual of the fit (NaN unless the curvature method is the fit).
+    pub residual: f32,
 }
 
 impl PixelResult {
@@ -54,6 +60,8 @@ impl PixelResult {
         counts: SampleCounts { valid: 0, missing: 0, border: 0 },
         second_stage: false,
         clamped: false,
+        directions: EMPTY_DIRECTIONS,
+        residual: f32::NAN,
     };
 }
 
@@ -96,18 +104,38 @@ pub fn evaluate_point(
             stats.merge(&more);
         }
     }
-    let estimates = estimate(&stats, &estimators);
+    // Pooled stages weight their samples by A_uv / N_stage, equal up to one sample for N/2 and
+    // N - N/2: the fit, invariant to a common scale of the weights, pools them as they are.
+    let fit = fit_if_asked(settings, &centre, scratch);
+    let estimates = estimate(&stats, fit.as_ref(), &estimators);
     let mut result = PixelResult {
         values: estimates.values.map(|v| v as f32),
         errors: [f32::NAN; 9],
         counts,
         second_stage,
         clamped: estimates.clamped,
+        directions: EMPTY_DIRECTIONS,
+        residual: f32::NAN,
     };
+    if let Some(fit) = fit {
+        result.directions = [fit.d1, fit.d2].map(|d| d.as_vec3().to_array());
+        result.residual = fit.residual as f32;
+    }
     if settings.standard_errors {
-        result.errors = batch_standard_errors(scratch, &centre.normal, settings, second_stage, first);
+        result.errors = batch_standard_errors(scratch, &centre, settings, second_stage, first);
     }
     result
+}
+
+const EMPTY_DIRECTIONS: [[f32; 3]; 2] = [[f32::NAN; 3]; 2];
+
+/// The quadric fit of `samples` when the settings ask for it.
+fn fit_if_asked(settings: &ComputeSettings, centre: &Centre, samples: &[Sample]) -> Option<QuadricFit> {
+    if settings.method == CurvatureMethod::Fit {
+        quadric_fit(centre.position, centre.normal, samples, settings.radius)
+    } else {
+        None
+    }
 }
 
 /// Standard errors from the spread of the estimates of `BATCHES` interleaved batches. A batch
@@ -115,25 +143,28 @@ pub fn evaluate_point(
 /// keeps the pattern's cancellation of the anisotropy.
 fn batch_standard_errors(
     samples: &[Sample],
-    normal: &glam::DVec3,
+    centre: &Centre,
     settings: &ComputeSettings,
     pooled: bool,
     first: usize,
 ) -> [f32; 9] {
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
-    let mut batches = [NeighbourhoodStats::default(); BATCHES];
+    let mut batches: [Vec<Sample>; BATCHES] = Default::default();
     for sample in samples {
         let group = sample.pattern_index as usize / TURNS;
-        batches[group % BATCHES].accumulate(std::slice::from_ref(sample), *normal, &stats_settings);
+        batches[group % BATCHES].push(*sample);
     }
     // Each batch holds about 1/BATCHES of the samples, so its absolute areas are scaled back up.
     let pooled_scale = if pooled { first as f64 / settings.samples as f64 } else { 1.0 };
     let values: Vec<[f64; 9]> = batches
-        .iter_mut()
-        .map(|b| {
-            b.scale_areas(BATCHES as f64 * pooled_scale);
-            estimate(b, &estimators).values
+        .iter()
+        .map(|batch| {
+            let mut stats = NeighbourhoodStats::default();
+            stats.accumulate(batch, centre.normal, &stats_settings);
+            stats.scale_areas(BATCHES as f64 * pooled_scale);
+            let fit = fit_if_asked(settings, centre, batch);
+            estimate(&stats, fit.as_ref(), &estimators).values
         })
         .collect();
     std::array::from_fn(|f| {

@@ -2,7 +2,7 @@
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
-use crate::features::{EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
+use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
 use crate::relocation::Relocation;
 use crate::sampling::{Criterion, SamplerSettings};
 
@@ -36,6 +36,8 @@ pub struct ComputeSettings {
     pub tau: f64,
     /// Gaussian-curvature method (moments).
     pub gaussian_method: GaussianMethod,
+    /// Source of the curvature features: integral invariants (default) or the quadric fit.
+    pub method: CurvatureMethod,
     /// Weighting of the volume integrands (distance).
     pub volume_weighting: VolumeWeighting,
     /// Inner exclusion of bending energy and curvature moments, as a fraction of `r` (0.1).
@@ -63,6 +65,7 @@ impl ComputeSettings {
             adaptive: false,
             tau: 0.01,
             gaussian_method: GaussianMethod::Moments,
+            method: CurvatureMethod::Integral,
             volume_weighting: VolumeWeighting::Distance,
             rho_min_fraction: 0.1,
             flat_tol: 1e-3,
@@ -130,6 +133,7 @@ impl ComputeSettings {
             gaussian_method: self.gaussian_method,
             flat_tol: self.flat_tol,
             volume_weighting: self.volume_weighting,
+            method: self.method,
         }
     }
 }

@@ -36,7 +36,7 @@ pub use stamped::StampedValues;
 pub use voronoi::{mixed_voronoi_areas, mixed_voronoi_corners};
 
 use crate::error::{Result, UvfeatError};
-use crate::features::{Feature, GaussianMethod, VolumeWeighting};
+use crate::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeighting};
 use crate::mesh::{checked_indices, checked_positions};
 use crate::output::ComputeSettings;
 use glam::DVec3;
@@ -71,6 +71,8 @@ pub struct ReferenceSettings {
     pub rho_min_fraction: f64,
     /// Shape index is NaN where curvedness `< flat_tol / r` (1e-3).
     pub flat_tol: f64,
+    /// Curvature estimators: integral (default) or the quadric fit over the neighbourhood's vertices.
+    pub method: CurvatureMethod,
 }
 
 impl ReferenceSettings {
@@ -82,6 +84,7 @@ impl ReferenceSettings {
             volume_weighting: defaults.volume_weighting,
             rho_min_fraction: defaults.rho_min_fraction,
             flat_tol: defaults.flat_tol,
+            method: defaults.method,
             features: defaults.features,
             radius,
         }
@@ -98,6 +101,7 @@ impl ReferenceSettings {
         s.volume_weighting = self.volume_weighting;
         s.rho_min_fraction = self.rho_min_fraction;
         s.flat_tol = self.flat_tol;
+        s.method = self.method;
         s
     }
 }
@@ -206,7 +210,9 @@ impl ReferenceMesh {
             geometry: &geometry,
             stats: compute.stats(),
             estimators: compute.estimators(),
-            disk: (needs_disk && settings.gaussian_method != ReferenceGaussian::Moments)
+            disk: (needs_disk
+                && settings.method == CurvatureMethod::Integral
+                && settings.gaussian_method != ReferenceGaussian::Moments)
                 .then_some(settings.gaussian_method),
         };
         let ids = &self.connectivity.vertex_ids;

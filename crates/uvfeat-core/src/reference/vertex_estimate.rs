@@ -10,7 +10,7 @@ use super::geometry::Geometry;
 use super::neighbourhood::euclidean_neighbourhood;
 use super::stamped::StampedValues;
 use super::ReferenceGaussian;
-use crate::features::{estimate, EstimatorSettings, NeighbourhoodStats, StatsSettings};
+use crate::features::{estimate, quadric_fit, CurvatureMethod, EstimatorSettings, NeighbourhoodStats, StatsSettings};
 use crate::sampling::Sample;
 
 /// Everything the per-vertex estimation reads.
@@ -98,5 +98,7 @@ pub(super) fn vertex_estimate(centre: u32, context: &Context, scratch: &mut Scra
             stats.geodesic_disk = clipped_disk(search, context.connectivity, geometry, r, bound, faces_seen);
         }
     }
-    (estimate(&stats, &context.estimators).values, scratch.samples.len() as u32)
+    let fit =
+        (context.estimators.method == CurvatureMethod::Fit).then(|| quadric_fit(p, n, &scratch.samples, r)).flatten();
+    (estimate(&stats, fit.as_ref(), &context.estimators).values, scratch.samples.len() as u32)
 }

@@ -4,6 +4,7 @@ mod support;
 
 mod errors;
 mod features;
+mod fit;
 mod geodesics;
 mod metric;
 mod rasterisation;

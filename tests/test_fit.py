@@ -1,0 +1,64 @@
+"""The fitting estimator (``method="fit"``, issue 6) against analytic truth, on a single-chart and
+an xatlas multi-chart parameterisation."""
+
+import numpy as np
+import pytest
+
+import uvfeat
+from analytic import lat_long_sphere, torus_single, torus_truth, torus_xatlas, xatlas_icosphere
+from uvfeat.errors import InvalidParameterError
+
+CURVATURES = ["mean_curvature", "gaussian_curvature", "k1", "k2"]
+
+
+@pytest.mark.parametrize("mesh_factory", [lat_long_sphere, xatlas_icosphere], ids=["lat-long", "xatlas"])
+def test_fit_gives_the_unit_sphere_curvatures(mesh_factory):
+    values = uvfeat.compute(mesh_factory(), CURVATURES + ["shape_index"], radius=0.2, compute_resolution=128,
+                            method="fit")
+    for name in CURVATURES:
+        assert np.nanmedian(np.abs(values[name] - 1)) < 0.01, name
+    assert np.nanmedian(values["shape_index"]) > 0.99
+
+
+def angles(directions: np.ndarray, truth: np.ndarray) -> np.ndarray:
+    """Degrees between line fields (sign-free), row by row."""
+    return np.degrees(np.arccos(np.clip(np.abs(np.sum(directions * truth, axis=-1)), 0, 1)))
+
+
+@pytest.mark.parametrize("mesh_factory", [torus_single, torus_xatlas], ids=["single chart", "xatlas"])
+def test_fit_directions_of_the_torus_per_texel_and_per_vertex(mesh_factory):
+    mesh = mesh_factory()
+    atlas = uvfeat.Atlas(mesh, 1024)
+    maps = atlas.compute(["k1", "k2"], radius=0.15, compute_resolution=128, method="fit")
+    assert maps["k1"].fit_residual is not None and np.nanmedian(maps["k1"].fit_residual) < 1e-2
+    texel_directions = maps["k1"].principal_directions
+    assert texel_directions.shape == (128, 128, 2, 3)
+    covered = np.isfinite(texel_directions[..., 0, 0])
+    assert np.allclose(np.linalg.norm(texel_directions[covered], axis=-1), 1, atol=1e-5)
+
+    directions = maps["k1"].per_vertex_directions()
+    assert directions.shape == (len(mesh.positions), 2, 3) and np.isfinite(directions).all()
+    p = mesh.positions
+    radial = np.stack([p[:, 0], p[:, 1], np.zeros(len(p))], axis=1)
+    radial /= np.linalg.norm(radial, axis=1, keepdims=True)
+    parallel = np.cross([0.0, 0.0, 1.0], radial)
+    normal = p - 2.0 * radial
+    normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+    meridian = np.cross(normal, parallel)
+    # k1 = 1/minor along the meridian everywhere on this torus (|k2| <= 2/3 < 2).
+    assert np.median(angles(directions[:, 0], meridian)) < 2.0
+    assert np.median(angles(directions[:, 1], parallel)) < 2.0
+    _, _, cos_v = torus_truth(mesh)
+    k1 = maps["k1"].per_vertex()
+    assert np.nanmedian(np.abs(k1 - 2.0)) < 0.02
+    assert np.nanmedian(np.abs(maps["k2"].per_vertex() - cos_v / (2.0 + 0.5 * cos_v))) < 0.02
+
+
+def test_directions_need_the_fit_and_the_method_is_checked():
+    atlas = uvfeat.Atlas(uvfeat.shapes.uv_sphere(1.0, 32, 16), 256)
+    maps = atlas.compute(["k1"], radius=0.3, compute_resolution=32)
+    assert maps["k1"].principal_directions is None and maps["k1"].fit_residual is None
+    with pytest.raises(InvalidParameterError, match="method"):
+        maps["k1"].per_vertex_directions()
+    with pytest.raises(InvalidParameterError, match="method"):
+        atlas.compute(["k1"], radius=0.3, compute_resolution=32, method="quadric")
