@@ -58,7 +58,7 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--shapes", default="sphere,torus,ellipsoid")
     parser.add_argument("--sizes", default="50K,200K")
     parser.add_argument("--radii", default="1,2,4,8", help="percent of the clean bounding-box diagonal")
-    parser.add_argument("--timeout", type=float, default=300.0, help="seconds per method and mesh")
+    parser.add_argument("--timeout", type=float, default=600.0, help="seconds per method and mesh")
     parser.add_argument("--memory-gb", type=float, default=8.0, help="address-space limit per method process")
     parser.add_argument("--results", default=str(ROOT / "docs/peers/results.json"))
     parser.add_argument("--markdown", default=str(ROOT / "docs/PEERS.md"))
@@ -122,8 +122,8 @@ def benchmark(args, runnable: list[str], results: list[dict], save) -> None:
 
 
 def measure(worker: Worker, surface, radius: float, timeout: float) -> dict:
-    status, seconds, h, k, detail = worker.run(surface, radius, timeout)
-    row = {"status": status, "seconds": seconds, "detail": detail}
+    status, (wall, cpu), h, k, detail = worker.run(surface, radius, timeout)
+    row = {"status": status, "seconds": wall, "cpu_seconds": cpu, "detail": detail}
     if status == "ok":
         finite = np.isfinite(h) & np.isfinite(k)
         row.update(h_error=surfaces.normalised_error(h, surface.true_h),

@@ -20,7 +20,8 @@ def progress_line(row: dict, name: str) -> str:
     where = f"  r={row['radius_pct']:g}%  {name:<22}"
     if row["status"] != "ok":
         return f"{where} {row['status']}: {row['detail']}"
-    return f"{where} {row['seconds']:8.2f} s   H {100 * row['h_error']:7.2f} %   K {100 * row['k_error']:7.2f} %"
+    return (f"{where} {row['seconds']:8.2f} s (cpu {row['cpu_seconds']:8.2f} s)   "
+            f"H {100 * row['h_error']:7.2f} %   K {100 * row['k_error']:7.2f} %")
 
 
 def percent(value: float) -> str:
@@ -39,7 +40,8 @@ def cell(row: dict | None, notes: list[str]) -> str:
     if row["status"] != "ok":
         notes.append(f"{label(row['method'])}, {row['shape']} {row['size']}, r = {row['radius_pct']:g} %: {row['detail']}")
         return f"error [{len(notes)}]"
-    text = f"{percent(row['h_error'])} / {percent(row['k_error'])} / {seconds(row['seconds'])}"
+    text = (f"{percent(row['h_error'])} / {percent(row['k_error'])} / {seconds(row['seconds'])} "
+            f"(cpu {seconds(row['cpu_seconds'])})")
     if row.get("nonfinite"):
         text += f" ({row['nonfinite']} NaN)"
     return text
@@ -94,6 +96,17 @@ def detail_tables(data: dict, notes: list[str]) -> list[str]:
     return lines
 
 
+def parallelism(data: dict) -> str:
+    """CPU time over wall time per method (summed over its runs of 1 s or more): how many cores it used."""
+    ratios = []
+    for key in _ordered([r["method"] for r in data["results"]], list(METHODS)):
+        runs = [r for r in data["results"] if r["method"] == key and r["status"] == "ok" and r["seconds"] >= 1]
+        if runs:
+            ratio = sum(r["cpu_seconds"] for r in runs) / sum(r["seconds"] for r in runs)
+            ratios.append(f"{label(key)} {ratio:.2f}")
+    return "CPU time / wall time (cores used on average): " + ", ".join(ratios) + "."
+
+
 def results_section(data: dict) -> str:
     m = data["machine"]
     versions = ", ".join(f"{name} {v}" for name, v in m["versions"].items() if v)
@@ -103,12 +116,13 @@ def results_section(data: dict) -> str:
              f"Command: `{data['command']}`; time limit {data['timeout_s']:.0f} s per method and mesh.", ""]
     for key, reason in data.get("skipped", {}).items():
         lines.append(f"- Not run: **{label(key)}**: {reason}")
-    lines += ["", "### Summary: noisy surfaces", "",
+    lines += ["", parallelism(data), "", "### Summary: noisy surfaces", "",
               "Range-normalised mean absolute error of H in % at 50K faces; wall time per noisy 200K-face mesh.", ""]
     lines += summary_table(data)
     lines += ["", "### All results", "",
-              "Each cell: H error % / K error % / wall time (range-normalised mean absolute error against "
-              "the analytic value; sphere: normalised by the true value).",
+              "Each cell: H error % / K error % / wall time (CPU time of the worker process). Errors are "
+              "range-normalised mean absolute errors against the analytic value (sphere: normalised by "
+              "the true value).",
               "\"timeout\": stopped at the time limit, or not run because a smaller radius already was."]
     lines += detail_tables(data, notes)
     if notes:

@@ -28,9 +28,9 @@ def _serve(conn, key: str, memory_bytes: int) -> None:
             return
         surface, radius = request
         try:
-            started = time.perf_counter()
+            started, cpu_started = time.perf_counter(), time.process_time()
             h, k = method.run(surface, radius)
-            conn.send(("ok", (time.perf_counter() - started, h, k)))
+            conn.send(("ok", (time.perf_counter() - started, time.process_time() - cpu_started, h, k)))
         except MemoryError:
             conn.send(("error", f"out of memory (limit {memory_bytes / 2**30:.0f} GiB)"))
         except Exception as error:
@@ -55,24 +55,24 @@ class Worker:
         child.close()
 
     def run(self, surface, radius: float, timeout: float):
-        """Returns (status, seconds, h, k, detail): status 'ok', 'timeout' or 'error'."""
+        """Returns (status, (wall s, cpu s), h, k, detail): status 'ok', 'timeout' or 'error'."""
         if self._process is None or not self._process.is_alive():
             self._start()
         self._conn.send((surface, radius))
         if not self._conn.poll(timeout):
             self.stop()
-            return "timeout", timeout, None, None, f"stopped after {timeout:.0f} s"
+            return "timeout", (timeout, None), None, None, f"stopped after {timeout:.0f} s"
         try:
             status, payload = self._conn.recv()
         except EOFError:
             self._process.join()
             code = self._process.exitcode
             self.stop()
-            return "error", None, None, None, f"worker died (exit code {code})"
+            return "error", (None, None), None, None, f"worker died (exit code {code})"
         if status != "ok":
-            return "error", None, None, None, payload
-        seconds, h, k = payload
-        return "ok", seconds, h, k, ""
+            return "error", (None, None), None, None, payload
+        wall, cpu, h, k = payload
+        return "ok", (wall, cpu), h, k, ""
 
     def stop(self) -> None:
         if self._process is not None:
