@@ -63,7 +63,7 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--results", default=str(ROOT / "docs/peers/results.json"))
     parser.add_argument("--markdown", default=str(ROOT / "docs/PEERS.md"))
     parser.add_argument("--plot", default=str(ROOT / "docs/peers/noisy_error.png"))
-    parser.add_argument("--resume", action="store_true", help="keep the results already in --results")
+    parser.add_argument("--resume", action="store_true", help="keep the results already in --results (errors are run again)")
     parser.add_argument("--report-only", action="store_true", help="rewrite tables and plot from --results")
     args = parser.parse_args(argv)
     if args.quick:
@@ -136,10 +136,11 @@ def main(argv=None) -> None:
     args = parse_args(argv)
     results_path = Path(args.results)
     data = json.loads(results_path.read_text()) if (args.resume or args.report_only) and results_path.exists() else {}
-    results = data.get("results", [])
+    results = [r for r in data.get("results", []) if args.report_only or r["status"] != "error"]
     if not args.report_only:
         runnable, skipped = available_methods(args.methods.split(","))
-        data = {"machine": machine(), "command": " ".join(["bench_peers.py"] + (argv or sys.argv[1:])),
+        command = " ".join(["bench_peers.py"] + (argv or sys.argv[1:]))
+        data = {"machine": machine(), "commands": data.get("commands", []) + [command],
                 "timeout_s": args.timeout, "skipped": {**data.get("skipped", {}), **skipped}, "results": results}
         results_path.parent.mkdir(parents=True, exist_ok=True)
 

@@ -106,7 +106,7 @@ def libigl(use_kring: bool) -> Callable[[Surface, float], tuple]:
     return run
 
 
-TRIMESH_CHUNK = 4096   # query points per call: bounds the neighbour lists trimesh builds in memory
+TRIMESH_CHUNK = 256   # query points per call: bounds the candidate edges and neighbour lists trimesh holds at once
 
 
 def trimesh_ball(surface: Surface, radius: float) -> tuple:

@@ -25,7 +25,14 @@ def progress_line(row: dict, name: str) -> str:
 
 
 def percent(value: float) -> str:
-    return f"{100 * value:.3g}" if value < 1 else f"{100 * value:.0f}"
+    """Three significant digits below 1 (= 100 %), whole percent up to 10^4 %, then 2.6e7 style."""
+    value *= 100
+    if value < 100:
+        return f"{value:.3g}"
+    if value < 1e4:
+        return f"{value:.0f}"
+    mantissa, exponent = f"{value:.1e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
 
 
 def seconds(value: float) -> str:
@@ -113,7 +120,8 @@ def results_section(data: dict) -> str:
     notes: list[str] = []
     lines = [START, "",
              f"Measured on {m['cpu']}, {m['cores']} cores (shared with other jobs), Python {m['python']}; {versions}.",
-             f"Command: `{data['command']}`; time limit {data['timeout_s']:.0f} s per method and mesh.", ""]
+             "Commands: " + ", then ".join(f"`{c}`" for c in data["commands"]) +
+             f"; time limit {data['timeout_s']:.0f} s per method and mesh.", ""]
     for key, reason in data.get("skipped", {}).items():
         lines.append(f"- Not run: **{label(key)}**: {reason}")
     lines += ["", parallelism(data), "", "### Summary: noisy surfaces", "",
