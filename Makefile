@@ -6,7 +6,11 @@ VENV := .venv
 BIN := $(VENV)/bin
 DEMO_OUT ?= uvfeat-out/demo
 
-.PHONY: demo test test-rs test-py install bench clean
+PEERS_VENV := .venv-peers
+PEERS_BIN := $(PEERS_VENV)/bin
+PEERS_ARGS ?=
+
+.PHONY: demo test test-rs test-py install bench bench-peers clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -33,5 +37,16 @@ bench: install
 	$(BIN)/python benches/bench_animate.py
 	$(BIN)/python benches/bench_reference.py --exact
 
+# Peers benchmark (docs/PEERS.md): libigl, trimesh, pymeshlab, trueform in their own venv, next to
+# a uvfeat wheel built from this tree. PEERS_ARGS=--quick for the 50K-face subset.
+bench-peers: install
+	test -x $(PEERS_BIN)/python || $(PYTHON) -m venv $(PEERS_VENV)
+	$(PEERS_BIN)/python -m pip install -q --upgrade pip
+	$(PEERS_BIN)/python -m pip install -q -r benches/peers/requirements.txt
+	rm -rf target/peers-wheel
+	$(BIN)/maturin build --release -q -o target/peers-wheel
+	$(PEERS_BIN)/python -m pip install -q --force-reinstall --no-deps target/peers-wheel/uvfeat-*.whl
+	$(PEERS_BIN)/python benches/peers/bench_peers.py $(PEERS_ARGS)
+
 clean:
-	rm -rf $(VENV) target uvfeat-out
+	rm -rf $(VENV) $(PEERS_VENV) target uvfeat-out
