@@ -65,3 +65,11 @@ def test_compute_command_with_the_fit_saves_principal_directions(tmp_path):
     assert abs(np.median(data["k1"]) - 1.0) < 0.05  # unit icosphere
     assert data["principal_directions"].shape == (len(data["positions"]), 2, 3)
     assert json.loads((out / "summary.json").read_text())["settings"]["method"] == "fit"
+    ply = trimesh.load(out / "per_vertex_r0p3.ply", process=False)
+    d1 = np.stack([ply.metadata["_ply_raw"]["vertex"]["data"][f"d1_{a}"] for a in "xyz"], -1)
+    np.testing.assert_allclose(d1, data["principal_directions"][:, 0], atol=1e-6)
+    with_segments = tmp_path / "segments"
+    assert main(args[:-1] + [str(with_segments), "--directions", "d1"]) == 0
+    assert (with_segments / "k1_r0p3.png").stat().st_size > 0
+    integral = [a if a != "fit" else "integral" for a in args[:-1]] + [str(tmp_path / "bad"), "--directions", "d1"]
+    assert main(integral) == 2  # the directions need --method fit

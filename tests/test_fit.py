@@ -85,3 +85,16 @@ def test_fit_holds_up_on_a_noisy_torus():
     (fit_h, fit_k), (integral_h, _) = errors("fit"), errors("integral")
     assert fit_h < 0.25 and fit_k < 0.2, (fit_h, fit_k)
     assert fit_h < 0.4 * integral_h, (fit_h, integral_h)
+
+
+def test_principal_directions_in_the_uv_plane_follow_the_torus_parameter_lines():
+    # uvfeat.shapes.torus: u runs along the parallels, v around the tube (the meridians, k1 = 1/minor).
+    atlas = uvfeat.Atlas(torus_single(), resolution=512)
+    maps = atlas.compute("k1", 0.3, samples=64, compute_resolution=96, method="fit")
+    field = maps["k1"].uv_principal_directions()
+    assert field.shape == (96, 96, 2, 2)
+    inside = np.isfinite(field[:, :, 0, 0])
+    assert inside.mean() > 0.9 and np.isnan(field[~inside]).all()
+    np.testing.assert_allclose(np.linalg.norm(field[inside], axis=-1), 1.0, atol=1e-9)
+    assert np.median(np.abs(field[inside][:, 0, 1])) > 0.999  # d1 along v
+    assert np.median(np.abs(field[inside][:, 1, 0])) > 0.999  # d2 along u

@@ -141,7 +141,8 @@ def main(argv=None) -> None:
         runnable, skipped = available_methods(args.methods.split(","))
         command = " ".join(["bench_peers.py"] + (argv or sys.argv[1:]))
         data = {"machine": machine(), "commands": data.get("commands", []) + [command],
-                "timeout_s": args.timeout, "skipped": {**data.get("skipped", {}), **skipped}, "results": results}
+                "timeout_s": args.timeout, "skipped": {**{k: v for k, v in data.get("skipped", {}).items() if k not in runnable}, **skipped},
+                "results": results}
         results_path.parent.mkdir(parents=True, exist_ok=True)
 
         def save() -> None:

@@ -162,7 +162,7 @@ METHODS = {
     "uvfeat": Method("uvfeat parametric", uvfeat_options(), uvfeat_option_probe(),
                      "uvfeat.compute, default options (1024² buffers, 512² texture, 256 samples)"),
     "uvfeat-fit": Method("uvfeat fit", uvfeat_options(method="fit"), uvfeat_option_probe(method="fit"),
-                         "uvfeat.compute(method='fit'): weighted least-squares quadric with free offset"),
+                         "uvfeat.compute(method='fit'): weighted least-squares fit of osculating circles with free offset and tilt"),
     "uvfeat-reference": Method("uvfeat reference", uvfeat_reference, _reference_probe,
                                "uvfeat.reference.compute: the mesh-space reference estimator"),
     "libigl": Method("libigl k-ring", libigl(use_kring=True), _missing("igl"),

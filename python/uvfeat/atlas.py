@@ -180,6 +180,11 @@ class Atlas:
 
     _FRAME_BUFFERS = ("position", "normal", "sigma", "theta")
 
+    @property
+    def positions(self) -> np.ndarray:
+        """(n_vertices, 3) vertex positions of the current frame (the mesh's until :meth:`update`)."""
+        return getattr(self, "_positions", self.mesh.positions)
+
     def update(self, positions) -> None:
         """Re-evaluates the buffers for new vertex positions (an animation frame): normals,
         metrics, seam maps and buffers are recomputed; charts, coverage and adjacency are reused."""
@@ -187,6 +192,7 @@ class Atlas:
         started = time.perf_counter()
         self._core.update(positions)
         self.timings["update_s"] = time.perf_counter() - started
+        self._positions = positions
         for name in self._FRAME_BUFFERS:
             self.__dict__.pop(name, None)
 

@@ -12,7 +12,7 @@ import time
 import warnings
 
 from . import __version__
-from .errors import UvfeatError
+from .errors import InvalidParameterError, UvfeatError
 
 
 def _console():
@@ -98,6 +98,13 @@ def _print_notes_and_outputs(console, notes: list[str], written: str, out: str) 
     console.print(f"wrote {written} to {out}")
 
 
+def _direction_properties(directions) -> dict:
+    """PLY vertex properties d1_x ... d2_z of ``(n_vertices, 2, 3)`` principal directions."""
+    if directions is None:
+        return {}
+    return {f"d{k + 1}_{axis}": directions[:, k, a].astype("float32") for k in range(2) for a, axis in enumerate("xyz")}
+
+
 def _write_features(mesh, args, console, load_notes: list[str], started: float) -> dict:
     """Computes the features at every radius and writes per-vertex files, maps and a summary."""
     import numpy as np
@@ -109,6 +116,8 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
 
     names = feature_names(args.feature)
     radii = [r.strip() for r in args.radius.split(",") if r.strip()]
+    if args.directions and args.method != "fit":
+        raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
     os.makedirs(args.out, exist_ok=True)
     options = {"query": args.query, "standard_error": args.standard_error, "method": args.method}
     summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
@@ -143,13 +152,18 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
             ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
             for n, v in per_vertex.items():
                 ply.vertex_attributes[n] = v.astype(np.float32)
+            for n, v in _direction_properties(arrays.get("principal_directions")).items():
+                ply.vertex_attributes[n] = v
             ply.visual.vertex_colors = vertex_colours(names[0], per_vertex[names[0]])
             ply.export(os.path.join(args.out, f"per_vertex_r{tag}.ply"))
             time_pv = time.perf_counter() - started_pv
             advance(f"pictures at r = {radius}")
+            line_field = first.uv_principal_directions()[:, :, ["d1", "d2"].index(args.directions)] \
+                if args.directions else None
             for n, m in maps.items():
                 np.save(os.path.join(args.out, f"{n}_r{tag}.npy"), m.texture)
-                save_feature_figure(os.path.join(args.out, f"{n}_r{tag}.png"), n, m.texture, m.radius, mesh.name)
+                save_feature_figure(os.path.join(args.out, f"{n}_r{tag}.png"), n, m.texture, m.radius, mesh.name,
+                                    line_field=line_field)
             summary["radii"][radius] = {
                 "radius": first.radius,
                 "features_s": first.settings["features_s"][0],
@@ -227,7 +241,7 @@ def _cmd_demo(args) -> int:
     args.out = os.path.join(root, "features")
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.compute_resolution, args.adaptive, args.paper_mode = 256, args.compute_resolution, False, False
-    args.seed, args.query, args.standard_error, args.method = 0, "texture", False, "integral"
+    args.seed, args.query, args.standard_error, args.method, args.directions = 0, "texture", False, "integral", None
     _write_features(mesh, args, console, [], time.perf_counter())
     return 0
 
@@ -289,6 +303,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_feature_command_options(compute, "; comma-separated for several scales")
     compute.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (SPEC §1.8)")
     compute.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
+    compute.add_argument("--directions", choices=("d1", "d2"), default=None,
+                         help="draw this principal direction (d1 of k1, d2 of k2) as segments on the map pictures; "
+                         "needs --method fit")
     compute.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
     compute.set_defaults(handler=_on_file(_write_features))
 

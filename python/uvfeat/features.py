@@ -153,6 +153,18 @@ class FeatureMap:
         values = self._cache["directions"]
         return values[0] if not self.is_stack else np.stack(values)
 
+    def uv_principal_directions(self) -> np.ndarray:
+        """The principal directions as a line field in the UV plane: ``(W_c, W_c, 2, 2)`` unit
+        ``(du, dv)`` of ``[d1, d2]`` (v up, as ``texture``), NaN off the charts (a leading
+        ``n_radii`` axis for a stack). For drawing them on the map. Needs ``method="fit"``."""
+        from .line_field import uv_line_field
+
+        if self.principal_directions is None:
+            raise InvalidParameterError('principal directions need method="fit" in compute()')
+        stack = self.principal_directions if self.is_stack else self.principal_directions[None]
+        fields = [np.stack([uv_line_field(self._atlas, d[:, :, k]) for k in range(2)], axis=2) for d in stack]
+        return fields[0] if not self.is_stack else np.stack(fields)
+
 
 def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
     return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), float(opts["tau"]), int(seed),

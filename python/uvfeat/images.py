@@ -143,8 +143,10 @@ def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
     return rgba
 
 
-def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray, radius: float, mesh_name: str = "") -> None:
-    """The feature map as a picture with a colourbar (v up, robust range, NaN transparent)."""
+def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray, radius: float, mesh_name: str = "",
+                        line_field: np.ndarray | None = None) -> None:
+    """The feature map as a picture with a colourbar (v up, robust range, NaN transparent), with
+    ``line_field`` (``(W, W, 2)`` UV directions, e.g. a principal direction) drawn as segments."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -153,6 +155,10 @@ def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray,
     cmap, low, high = colour_range(name, texture)
     fig, ax = plt.subplots(figsize=(6.4, 5.4), dpi=120)
     image = ax.imshow(np.flipud(texture), cmap=cmap, vmin=low, vmax=high, interpolation="nearest")
+    if line_field is not None:
+        from .line_field import draw_line_field
+
+        draw_line_field(ax, line_field)
     ax.set_axis_off()
     unit = FEATURE_UNITS.get(name, "")
     ax.set_title(f"{mesh_name} {name} (r = {radius:.4g})".strip())
