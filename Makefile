@@ -10,7 +10,7 @@ PEERS_VENV := .venv-peers
 PEERS_BIN := $(PEERS_VENV)/bin
 PEERS_ARGS ?=
 
-.PHONY: demo test test-rs test-py install bench bench-peers clean
+.PHONY: demo test test-rs test-py install bench bench-noise bench-peers clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -36,6 +36,10 @@ bench: install
 	$(BIN)/python benches/bench_features.py
 	$(BIN)/python benches/bench_animate.py
 	$(BIN)/python benches/bench_reference.py --exact
+
+# Noise study of the integral and fit estimators (docs/NOISE.md); NOISE_ARGS=--quick for a subset.
+bench-noise: install
+	$(BIN)/python benches/bench_noise.py $(NOISE_ARGS)
 
 # Peers benchmark (docs/PEERS.md): libigl, trimesh, pymeshlab, trueform in their own venv, next to
 # a uvfeat wheel built from this tree. PEERS_ARGS=--quick for the 50K-face subset.

@@ -89,7 +89,8 @@ def _clean_mesh(shape: str, size: str) -> tuple[uvfeat.Mesh, tuple]:
     raise ValueError(f"unknown shape {shape!r} (sphere, torus, ellipsoid)")
 
 
-def build(shape: str, size: str, noisy: bool) -> Surface:
+def build(shape: str, size: str, noisy: bool, noise_fraction: float = NOISE_FRACTION) -> Surface:
+    """The surface, clean or with normal noise of ``noise_fraction`` of the diagonal (std)."""
     mesh, truth = _clean_mesh(shape, size)
     clean = np.array(mesh.positions)
     true_h, true_k = truth(clean)
@@ -97,7 +98,7 @@ def build(shape: str, size: str, noisy: bool) -> Surface:
     positions = clean
     if noisy:
         normals = trimesh.Trimesh(clean, mesh.faces, process=False).vertex_normals
-        offsets = np.random.default_rng(NOISE_SEED).normal(0.0, NOISE_FRACTION * diagonal, len(clean))
+        offsets = np.random.default_rng(NOISE_SEED).normal(0.0, noise_fraction * diagonal, len(clean))
         positions = clean + offsets[:, None] * normals
     return Surface(shape, size, noisy, positions, np.array(mesh.faces), np.array(mesh.uvs),
                    np.array(mesh.uv_faces), true_h, true_k, diagonal,
