@@ -160,7 +160,8 @@ def test_cli_writes_frames_maps_and_a_gif(tmp_path):
     out = tmp_path / "out"
     result = subprocess.run([sys.executable, "-m", "uvfeat", "animate", growing_sphere(tmp_path / "grow.glb"),
                              "--radius", "0.2", "--fps", "2", "--samples", "32", "--resolution", "256",
-                             "--compute-resolution", "64", "--out", str(out)], capture_output=True, text=True)
+                             "--compute-resolution", "64", "--method", "fit", "--out", str(out)],
+                            capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
     assert "3 frames" in result.stderr
     with np.load(out / "frame_0002.npz") as last:
@@ -169,6 +170,7 @@ def test_cli_writes_frames_maps_and_a_gif(tmp_path):
     assert Image.open(out / "mean_curvature.gif").n_frames == 3
     summary = json.loads((out / "summary.json").read_text())
     assert summary["animation"] == "grow" and len(summary["timings"]["per_frame"]) == 3
+    assert summary["settings"]["method"] == "fit"
     failed = subprocess.run([sys.executable, "-m", "uvfeat", "animate", str(tmp_path / "grow.glb"), "--animation",
                              "walk", "--out", str(out)], capture_output=True, text=True)
     assert failed.returncode == 2 and "no animation 'walk'" in failed.stderr and "0: 'grow'" in failed.stderr

@@ -260,6 +260,9 @@ def _feature_names():
 def _add_feature_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--samples", type=int, default=256, help="Monte Carlo samples per texel (default 256)")
     parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
+    parser.add_argument("--method", choices=("integral", "fit"), default="integral",
+                        help="curvature estimators: integral invariants or the osculating-circle fit (adds principal "
+                        "directions)")
 
 
 def _add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:
@@ -275,8 +278,6 @@ def _add_feature_command_options(parser: argparse.ArgumentParser, radius_note: s
     parser.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
-    parser.add_argument("--method", choices=("integral", "fit"), default="integral",
-                        help="curvature estimators: integral invariants or the quadric fit (adds principal directions)")
 
 
 def build_parser() -> argparse.ArgumentParser:
