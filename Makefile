@@ -9,8 +9,9 @@ DEMO_OUT ?= uvfeat-out/demo
 PEERS_VENV := .venv-peers
 PEERS_BIN := $(PEERS_VENV)/bin
 PEERS_ARGS ?=
+EXPERIMENTS_ARGS ?=
 
-.PHONY: demo test test-rs test-py install bench bench-noise bench-peers clean
+.PHONY: demo test test-rs test-py install bench bench-noise bench-peers experiments clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -40,6 +41,12 @@ bench: install
 # Noise study of the integral and fit estimators (docs/NOISE.md); NOISE_ARGS=--quick for a subset.
 bench-noise: install
 	$(BIN)/python benches/bench_noise.py $(NOISE_ARGS)
+
+# The paper's evaluation (SPEC §5.2-§5.8) in one run, ~25-40 min on 2 cores: docs/EXPERIMENTS.md,
+# docs/experiments/results.json and plots. EXPERIMENTS_ARGS=--quick for a smoke run (written to
+# uvfeat-out/experiments-quick/), --only table1,radius, --resume, --report-only.
+experiments: install
+	$(BIN)/python benches/experiments.py $(EXPERIMENTS_ARGS)
 
 # Peers benchmark (docs/PEERS.md): libigl, trimesh, pymeshlab, trueform in their own venv, next to
 # a uvfeat wheel built from this tree. PEERS_ARGS=--quick for the 50K-face subset.
