@@ -39,6 +39,7 @@ bench: install
 	$(BIN)/python benches/bench_reference.py --exact
 
 # Noise study of the integral and fit estimators (docs/NOISE.md); NOISE_ARGS=--quick for a subset.
+NOISE_ARGS ?= --compute-resolution 256
 bench-noise: install
 	$(BIN)/python benches/bench_noise.py $(NOISE_ARGS)
 

@@ -7,7 +7,8 @@
 Surfaces: the torus (R = 2, a = 0.5) and ellipsoid (1 x 0.8 x 0.6) of the peers benchmark at ~50K
 faces (`benches/peers/surfaces.py`), every vertex moved along its clean normal by a Gaussian offset
 of 0, 0.05, 0.2 and 0.5 % of the diagonal. Radii 1-16 % of the diagonal, default configuration
-(1024² buffers, 512² texture, 256 samples), per-vertex values by texture lookup, principal
+(1024² buffers, 256 samples; the computation texture is 512² unless --compute-resolution says
+otherwise), per-vertex values by texture lookup, principal
 directions evaluated at the vertices. Errors: range-normalised mean absolute error of H, K, k1, k2
 (relative to the mean |truth| where the truth is constant: k1 = 1/a on the torus) and the median
 angle between the fitted d1 and the analytic one where |k1 - k2| > 20 % of |k1|.
@@ -72,7 +73,7 @@ def principal_truth(shape: str, p: np.ndarray):
     return k1, mean - root, d1 / np.linalg.norm(d1, axis=1, keepdims=True)
 
 
-def run_case(shape: str, noise: float, radii: list[float], methods: list[str]) -> list[dict]:
+def run_case(shape: str, noise: float, radii: list[float], methods: list[str], compute_resolution: int) -> list[dict]:
     surface = surfaces.build(shape, "50K", noise > 0, noise_fraction=noise / 100)
     clean = surfaces.build(shape, "50K", False).positions
     k1_true, k2_true, d1_true = principal_truth(shape, clean)
@@ -86,11 +87,12 @@ def run_case(shape: str, noise: float, radii: list[float], methods: list[str]) -
             started = time.perf_counter()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                maps = atlas.compute(CURVATURES, pct / 100 * surface.diagonal, method=method)
+                maps = atlas.compute(CURVATURES, pct / 100 * surface.diagonal, method=method,
+                                     compute_resolution=compute_resolution)
                 values = {name: m.per_vertex() for name, m in maps.items()}
             seconds = time.perf_counter() - started
             row = {"shape": shape, "faces": int(len(surface.faces)), "noise_pct": noise, "radius_pct": pct,
-                   "method": method, "seconds": seconds,
+                   "method": method, "seconds": seconds, "compute_resolution": compute_resolution,
                    **{SHORT[n]: surfaces.normalised_error(values[n], truth[n]) for n in CURVATURES}}
             if method == "fit":
                 d1 = maps["k1"].per_vertex_directions()[:, 0]
@@ -128,7 +130,8 @@ def tables(data: dict) -> str:
                     out.append(f"| {noise:g} % | {method} | " + " | ".join(cells.get(r, "") for r in radii) + " |")
         out.append("")
     seconds = {m: [r["seconds"] for r in rows if r["method"] == m] for m in METHODS}
-    out.append("Mean time per computation (features + per-vertex lookup, 512² x 256): " + ", ".join(
+    width = rows[0].get("compute_resolution", 512)
+    out.append(f"Mean time per computation (features + per-vertex lookup, {width}² x 256): " + ", ".join(
         f"{m} {np.mean(s):.1f} s" for m, s in seconds.items() if s) + ".")
     return "\n".join(out) + "\n"
 
@@ -176,6 +179,7 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="noise 0 and 0.2 %%, radii 2, 4, 8 %%")
     parser.add_argument("--shapes", default=",".join(SHAPES))
+    parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture (default 512)")
     parser.add_argument("--results", default=str(ROOT / "docs/noise/results.json"))
     parser.add_argument("--markdown", default=str(ROOT / "docs/NOISE.md"))
     parser.add_argument("--plot", default=str(ROOT / "docs/noise/noise_error.png"))
@@ -191,7 +195,7 @@ def main(argv=None) -> None:
                 "command": " ".join(["bench_noise.py"] + (argv if argv is not None else sys.argv[1:])), "results": []}
         for shape in args.shapes.split(","):
             for level in noise:
-                data["results"] += run_case(shape, level, radii, METHODS)
+                data["results"] += run_case(shape, level, radii, METHODS, args.compute_resolution)
                 results.parent.mkdir(parents=True, exist_ok=True)
                 results.write_text(json.dumps(data, indent=1))
     write_markdown(data, Path(args.markdown))
