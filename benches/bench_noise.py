@@ -193,8 +193,9 @@ def main(argv=None) -> None:
         data = {"machine": f"{platform.processor() or platform.machine()}, {len(__import__('os').sched_getaffinity(0))} cores, "
                            f"Python {platform.python_version()}, uvfeat {uvfeat.__version__}",
                 "command": " ".join(["bench_noise.py"] + (argv if argv is not None else sys.argv[1:])), "results": []}
-        for shape in args.shapes.split(","):
-            for level in noise:
+        # The headline level first, so that a cut-off run has the most telling rows.
+        for level in sorted(noise, key=lambda n: (n != 0.2, n)):
+            for shape in args.shapes.split(","):
                 data["results"] += run_case(shape, level, radii, METHODS, args.compute_resolution)
                 results.parent.mkdir(parents=True, exist_ok=True)
                 results.write_text(json.dumps(data, indent=1))

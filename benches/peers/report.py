@@ -52,6 +52,9 @@ def cell(row: dict | None, notes: list[str]) -> str:
             f"(cpu {seconds(row['cpu_seconds'])})")
     if row.get("nonfinite"):
         text += f" ({row['nonfinite']} NaN)"
+    if row.get("detail"):
+        notes.append(f"{label(row['method'])}, {row['shape']} {row['size']}, r = {row['radius_pct']:g} %: {row['detail']}")
+        text += f" [{len(notes)}]"
     return text
 
 
