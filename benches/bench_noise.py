@@ -179,20 +179,26 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="noise 0 and 0.2 %%, radii 2, 4, 8 %%")
     parser.add_argument("--shapes", default=",".join(SHAPES))
+    parser.add_argument("--radii", default=",".join(f"{r:g}" for r in RADII), help="%% of the diagonal")
     parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture (default 512)")
     parser.add_argument("--results", default=str(ROOT / "docs/noise/results.json"))
     parser.add_argument("--markdown", default=str(ROOT / "docs/NOISE.md"))
     parser.add_argument("--plot", default=str(ROOT / "docs/noise/noise_error.png"))
     parser.add_argument("--report-only", action="store_true", help="rewrite tables and plot from --results")
+    parser.add_argument("--merge", action="store_true", help="add to the rows already in --results (same cases replaced)")
     args = parser.parse_args(argv)
     results = Path(args.results)
     if args.report_only:
         data = json.loads(results.read_text())
     else:
-        noise, radii = ([0.0, 0.2], [2.0, 4.0, 8.0]) if args.quick else (NOISE, RADII)
+        noise, radii = ([0.0, 0.2], [2.0, 4.0, 8.0]) if args.quick else (NOISE, [float(r) for r in args.radii.split(",")])
         data = {"machine": f"{platform.processor() or platform.machine()}, {len(__import__('os').sched_getaffinity(0))} cores, "
                            f"Python {platform.python_version()}, uvfeat {uvfeat.__version__}",
                 "command": " ".join(["bench_noise.py"] + (argv if argv is not None else sys.argv[1:])), "results": []}
+        if args.merge and results.exists():
+            earlier = json.loads(results.read_text())
+            data["command"] = f"{earlier['command']}, then {data['command']}"
+            data["results"] = [r for r in earlier["results"] if r["radius_pct"] not in radii or r["noise_pct"] not in noise]
         # The headline level first, so that a cut-off run has the most telling rows.
         for level in sorted(noise, key=lambda n: (n != 0.2, n)):
             for shape in args.shapes.split(","):
