@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import platform
 import sys
 import time
 import warnings
@@ -31,6 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benches" / "peers"))
 
 import surfaces  # noqa: E402  (the peers benchmark's surfaces, truth and error measure)
+from report_common import machine, write_section  # noqa: E402  (benches/ is on the path as a script)
 
 import uvfeat  # noqa: E402
 
@@ -75,7 +75,7 @@ def principal_truth(shape: str, p: np.ndarray):
 
 def run_case(shape: str, noise: float, radii: list[float], methods: list[str], compute_resolution: int) -> list[dict]:
     surface = surfaces.build(shape, "50K", noise > 0, noise_fraction=noise / 100)
-    clean = surfaces.build(shape, "50K", False).positions
+    clean = surface.positions if noise == 0 else surfaces.build(shape, "50K", False).positions
     k1_true, k2_true, d1_true = principal_truth(shape, clean)
     truth = {"mean_curvature": surface.true_h, "gaussian_curvature": surface.true_k, "k1": k1_true, "k2": k2_true}
     anisotropic = np.abs(k1_true - k2_true) > 0.2 * np.abs(k1_true)
@@ -169,10 +169,7 @@ def plot(data: dict, path: Path) -> None:
 
 
 def write_markdown(data: dict, path: Path) -> None:
-    text = path.read_text() if path.exists() else f"# Noise study\n\n{START}\n{END}\n"
-    head, rest = text.split(START, 1)
-    tail = rest.split(END, 1)[1]
-    path.write_text(f"{head}{START}\n{tables(data)}{END}{tail}")
+    write_section(path, START, END, tables(data), "# Noise study\n")
 
 
 def main(argv=None) -> None:
@@ -192,8 +189,7 @@ def main(argv=None) -> None:
         data = json.loads(results.read_text())
     else:
         noise, radii = ([0.0, 0.2], [2.0, 4.0, 8.0]) if args.quick else (NOISE, [float(r) for r in args.radii.split(",")])
-        data = {"machine": f"{platform.processor() or platform.machine()}, {len(__import__('os').sched_getaffinity(0))} cores, "
-                           f"Python {platform.python_version()}, uvfeat {uvfeat.__version__}",
+        data = {"machine": machine(),
                 "command": " ".join(["bench_noise.py"] + (argv if argv is not None else sys.argv[1:])), "results": []}
         if args.merge and results.exists():
             earlier = json.loads(results.read_text())

@@ -12,8 +12,6 @@ adaptive sampling, max_jumps, tau) can be set.
 from __future__ import annotations
 
 import json
-import os
-import platform
 import re
 import sys
 import time
@@ -34,6 +32,7 @@ import uvfeat  # noqa: E402
 from uvfeat.compare import PARAMETRIC_GAUSSIAN, absolute_errors  # noqa: E402
 from uvfeat.io import read_geometry  # noqa: E402
 from uvfeat.unwrap import xatlas_uvs  # noqa: E402
+from report_common import machine  # noqa: E402  (benches/ is on the path as a script)
 
 #: Shared meshes by short name: (file, needs an xatlas atlas).
 SHARED = {"spot": ("spot_triangulated.obj", False), "bob": ("bob_tri.obj", False), "blub": ("blub.obj", False),
@@ -47,13 +46,6 @@ def log(message: str) -> None:
     """A progress line with the minutes since the start."""
     elapsed = time.perf_counter() - START
     print(f"[{int(elapsed // 60):3d}:{int(elapsed % 60):02d}] {message}", flush=True)
-
-
-def machine() -> str:
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    threads = os.environ.get("RAYON_NUM_THREADS", str(cores))
-    return (f"{platform.processor() or platform.machine()}, {cores} cores ({threads} threads), "
-            f"Python {platform.python_version()}, uvfeat {uvfeat.__version__}")
 
 
 @dataclass

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 import experiments_plots as plots
+from report_common import write_section
 
 START, END = "<!-- experiments:start -->", "<!-- experiments:end -->"
 H = "mean_curvature"
@@ -259,11 +260,7 @@ def body(data: dict) -> str:
 
 def write(data: dict, out: Path) -> None:
     """Rewrites the generated part of OUT/EXPERIMENTS.md and the plots in OUT/experiments/."""
-    path = out / "EXPERIMENTS.md"
     template = Path(__file__).resolve().parent.parent / "docs" / "EXPERIMENTS.md"
-    text = path.read_text() if path.exists() else (template.read_text() if template.exists()
-                                                   else f"# Experiments\n\n{START}\n{END}\n")
-    head, rest = text.split(START, 1)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(f"{head}{START}\n{body(data)}\n{END}{rest.split(END, 1)[1]}")
+    write_section(out / "EXPERIMENTS.md", START, END, f"{body(data)}\n",
+                  template.read_text() if template.exists() else "# Experiments\n")
     plots.write_all(data, out / "experiments")

@@ -162,7 +162,7 @@ class FeatureMap:
         if self.principal_directions is None:
             raise InvalidParameterError('principal directions need method="fit" in compute()')
         stack = self.principal_directions if self.is_stack else self.principal_directions[None]
-        fields = [np.stack([uv_line_field(self._atlas, d[:, :, k]) for k in range(2)], axis=2) for d in stack]
+        fields = [uv_line_field(self._atlas, d) for d in stack]
         return fields[0] if not self.is_stack else np.stack(fields)
 
 

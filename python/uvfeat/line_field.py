@@ -7,8 +7,9 @@ import numpy as np
 
 
 def uv_line_field(atlas, directions: np.ndarray) -> np.ndarray:
-    """``(W_c, W_c, 2)`` unit directions in the UV plane (u right, v up) of the 3D tangent
-    directions ``(W_c, W_c, 3)`` of a computation texture, NaN off the charts.
+    """``(W_c, W_c, ..., 2)`` unit directions in the UV plane (u right, v up) of the 3D tangent
+    directions ``(W_c, W_c, ..., 3)`` of a computation texture (any number of directions per
+    texel), NaN off the charts.
 
     A direction ``d`` of the surface is pulled back through the affine map of the triangle each
     texel shows: with ``e1, e2`` its edges in 3D and ``f1, f2`` in UV, ``d ~ a e1 + b e2`` (least
@@ -23,20 +24,20 @@ def uv_line_field(atlas, directions: np.ndarray) -> np.ndarray:
     mesh, positions = atlas.mesh, atlas.positions
     corners = mesh.faces[faces[covered]]
     uv_corners = mesh.uv_faces[faces[covered]]
-    e1 = positions[corners[:, 1]] - positions[corners[:, 0]]
-    e2 = positions[corners[:, 2]] - positions[corners[:, 0]]
-    f1 = mesh.uvs[uv_corners[:, 1]] - mesh.uvs[uv_corners[:, 0]]
-    f2 = mesh.uvs[uv_corners[:, 2]] - mesh.uvs[uv_corners[:, 0]]
-    d = directions[covered]
-    gram = np.stack([np.stack([(e1 * e1).sum(1), (e1 * e2).sum(1)], -1),
-                     np.stack([(e1 * e2).sum(1), (e2 * e2).sum(1)], -1)], -2)
-    rhs = np.stack([(e1 * d).sum(1), (e2 * d).sum(1)], -1)
+    d = directions[covered].reshape(int(covered.sum()), -1, 3)
+    e1 = (positions[corners[:, 1]] - positions[corners[:, 0]])[:, None]
+    e2 = (positions[corners[:, 2]] - positions[corners[:, 0]])[:, None]
+    f1 = (mesh.uvs[uv_corners[:, 1]] - mesh.uvs[uv_corners[:, 0]])[:, None]
+    f2 = (mesh.uvs[uv_corners[:, 2]] - mesh.uvs[uv_corners[:, 0]])[:, None]
+    g11, g12, g22 = (e1 * e1).sum(-1), (e1 * e2).sum(-1), (e2 * e2).sum(-1)
+    r1, r2 = (e1 * d).sum(-1), (e2 * d).sum(-1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        ab = np.linalg.solve(gram, rhs[..., None])[..., 0] if len(d) else rhs
-        uv = ab[:, :1] * f1 + ab[:, 1:] * f2
-        uv /= np.linalg.norm(uv, axis=1, keepdims=True)
-    out = np.full((width, width, 2), np.nan)
-    out[covered] = uv
+        det = g11 * g22 - g12 * g12
+        a, b = (g22 * r1 - g12 * r2) / det, (g11 * r2 - g12 * r1) / det
+        uv = a[..., None] * f1 + b[..., None] * f2
+        uv /= np.linalg.norm(uv, axis=-1, keepdims=True)
+    out = np.full(directions.shape[:-1] + (2,), np.nan)
+    out[covered] = uv.reshape(out[covered].shape)
     return out
 
 

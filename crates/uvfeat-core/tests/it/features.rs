@@ -1,7 +1,7 @@
 //! SPEC §5.9 acceptance checks against analytic truth, on the single-chart parameterisations
 //! (the multi-chart xatlas checks run in the Python suite).
 
-use crate::support::atlas;
+use crate::support::{atlas, median};
 use uvfeat_core::features::Feature;
 use uvfeat_core::output::{ComputeSettings, FeatureMaps};
 use uvfeat_core::shapes::{cylinder, plane, torus, uv_sphere, ShapeMesh};
@@ -13,13 +13,6 @@ fn maps(atlas: &Atlas, radius: f64, resolution: usize) -> FeatureMaps {
     let mut settings = ComputeSettings::new(ALL.to_vec(), radius);
     settings.resolution = resolution;
     FeatureMaps::compute(atlas, &settings).expect("valid settings")
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.retain(|x| x.is_finite());
-    assert!(!v.is_empty());
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    v[v.len() / 2]
 }
 
 /// Median of `f(value, texel centre)` over the texels of a map where `keep(texel)` holds.

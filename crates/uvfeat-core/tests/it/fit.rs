@@ -2,7 +2,7 @@
 //! estimators, principal directions of a torus and an ellipsoid within 2 degrees, consistent at
 //! the seams and invariant under a rigid motion.
 
-use crate::support::atlas;
+use crate::support::{atlas, median};
 use glam::{DMat3, DQuat, DVec2, DVec3};
 use uvfeat_core::features::{CurvatureMethod, Feature};
 use uvfeat_core::output::{per_vertex_directions, ComputeSettings, FeatureMaps};
@@ -17,13 +17,6 @@ fn maps(atlas: &Atlas, radius: f64, resolution: usize, method: CurvatureMethod) 
     settings.resolution = resolution;
     settings.method = method;
     FeatureMaps::compute(atlas, &settings).expect("valid settings")
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.retain(|x| x.is_finite());
-    assert!(!v.is_empty());
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    v[v.len() / 2]
 }
 
 /// Median over evaluated texels of `|value - truth|` for `feature`.

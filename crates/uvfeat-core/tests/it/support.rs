@@ -30,3 +30,11 @@ pub fn interpolate(atlas: &Atlas, face: usize, b: [f64; 3]) -> DVec3 {
     let tri = atlas.topology.faces[face];
     (0..3).map(|k| atlas.frame.positions[tri[k] as usize] * b[k]).sum()
 }
+
+/// Median of the finite values (panics when there is none).
+pub fn median(mut v: Vec<f64>) -> f64 {
+    v.retain(|x| x.is_finite());
+    assert!(!v.is_empty());
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    v[v.len() / 2]
+}
