@@ -78,12 +78,12 @@ pub fn evaluate_point(
     let Some(centre) = centre_at(atlas, uv) else {
         return PixelResult::EMPTY;
     };
-    let mut sampler = settings.sampler();
+    let sampler = settings.sampler();
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
     let first = patterns.first.len();
-    let (mut counts, area) =
-        gather_covering(atlas, &centre, &patterns.first, psi, &mut sampler, settings.grow_margin, scratch);
+    let (mut counts, reach) =
+        gather_covering(atlas, &centre, &patterns.first, psi, &sampler, settings.grow_margin, scratch);
     let mut stats = NeighbourhoodStats::default();
     stats.accumulate(scratch, centre.normal, &stats_settings);
     let mut second_stage = false;
@@ -95,7 +95,7 @@ pub fn evaluate_point(
             let second = patterns.second.len();
             let total = (first + second) as f64;
             let start = scratch.len();
-            counts.add(gather(atlas, &centre, &patterns.second, psi, area / second as f64, &sampler, scratch));
+            counts.add(gather(atlas, &centre, &patterns.second, psi, &reach, &sampler, scratch));
             // Each stage's samples stood for A_uv / N_stage; pooled they stand for A_uv / N.
             stats.scale_areas(first as f64 / total);
             let mut more = NeighbourhoodStats::default();

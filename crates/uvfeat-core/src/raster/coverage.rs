@@ -38,9 +38,10 @@ pub struct Coverage {
     pub chart: Vec<i32>,
     /// Boundary side (index into `Topology::sides`) closest to a border texel; -1 = not a border texel.
     pub border_side: Vec<i32>,
-    /// Chebyshev distance (texels, capped at 255) to the nearest texel of another chart, the
-    /// empty space or the domain edge: every texel closer than this shares this texel's chart, so
-    /// a march may jump `distance - 1` texels at once (the relocation's speed-up at large radii).
+    /// Chebyshev distance (texels, capped at 255) to the nearest texel that a chart boundary
+    /// touches or that borders another chart, the empty space or the domain edge: every texel
+    /// closer than `distance - 1` shares this texel's chart and no boundary crosses it, so a march
+    /// or a walk may jump that far at once (the relocation's speed-up at large radii).
     pub chart_distance: Vec<u8>,
     /// Counts for reports.
     pub diagnostics: CoverageDiagnostics,
@@ -61,7 +62,7 @@ impl Coverage {
         };
         coverage.rasterise_triangles(topology);
         coverage.rasterise_boundaries(topology);
-        coverage.chart_distance = chart_distance(&coverage.chart, resolution);
+        coverage.chart_distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
         coverage
     }
 
@@ -141,8 +142,9 @@ impl Coverage {
     pub const BYTES_PER_TEXEL: u64 = 21 + 36 + 24;
 }
 
-/// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation).
-fn chart_distance(chart: &[i32], r: usize) -> Vec<u8> {
+/// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation) from
+/// the border texels and the texels next to another chart.
+fn chart_distance(chart: &[i32], border_side: &[i32], r: usize) -> Vec<u8> {
     let mut d = vec![u8::MAX; r * r];
     let neighbours = |i: usize, j: usize| {
         [(-1i64, -1i64), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)]
@@ -155,7 +157,7 @@ fn chart_distance(chart: &[i32], r: usize) -> Vec<u8> {
             let edge = neighbours(i, j).any(|(x, y)| {
                 x < 0 || y < 0 || x >= r as i64 || y >= r as i64 || chart[y as usize * r + x as usize] != c
             });
-            if edge {
+            if edge || border_side[j * r + i] >= 0 {
                 d[j * r + i] = 1;
             }
         }
@@ -203,14 +205,18 @@ mod tests {
     use super::chart_distance;
 
     #[test]
-    fn chart_distance_is_the_chebyshev_distance_to_another_chart() {
+    fn chart_distance_is_the_chebyshev_distance_to_another_chart_or_a_boundary() {
         let r = 9;
         let mut chart = vec![0; r * r];
         chart[4 * r + 6] = 1;
-        let d = chart_distance(&chart, r);
+        let mut border_side = vec![-1; r * r];
+        border_side[6 * r + 2] = 0;
+        let d = chart_distance(&chart, &border_side, r);
         assert_eq!(d[4 * r + 5], 1); // next to the other chart
         assert_eq!(d[4 * r + 3], 3); // 3 columns away: texels at distance < 3 are all chart 0... and the edge
         assert_eq!(d[0], 1); // domain edge
         assert_eq!(d[2 * r + 2], 3);
+        assert_eq!(d[6 * r + 2], 1); // a boundary touches it
+        assert_eq!(d[6 * r + 3], 2); // 3 without that boundary
     }
 }

@@ -6,7 +6,7 @@
 
 use super::Located;
 use crate::atlas::Atlas;
-use crate::mesh::{EdgeLink, Topology};
+use crate::mesh::EdgeLink;
 use glam::{DMat2, DVec2};
 
 /// Faces one walk may cross inside a chart before it is given up as lost (a guard against
@@ -43,9 +43,17 @@ fn edge_functions(corners: &[DVec2; 3], uv: DVec2) -> [f64; 3] {
     })
 }
 
-/// Walks from `from` (in `face`, entered through edge `entry`) towards `target` inside one chart.
-fn walk_in_chart(topology: &Topology, mut face: u32, mut entry: Option<u8>, mut from: DVec2, target: DVec2) -> Stop {
-    for _ in 0..MAX_FACES {
+/// Walks from `from` (in `face`, entered through edge `entry`) towards `target` inside one chart;
+/// with `skipping`, every few faces it tries to jump ahead over texels no boundary touches.
+fn walk_in_chart(atlas: &Atlas, mut face: u32, mut entry: Option<u8>, mut from: DVec2, target: DVec2, skipping: bool) -> Stop {
+    let topology = &atlas.topology;
+    let chart = topology.face_chart[face as usize];
+    for step in 0..MAX_FACES {
+        if skipping && step % SKIP_EVERY == 0 {
+            if let Some((ahead, point)) = skip_ahead(atlas, chart, from, target) {
+                (face, entry, from) = (ahead, None, point);
+            }
+        }
         let corners = &topology.corner_uvs[face as usize];
         let at_target = edge_functions(corners, target);
         let at_from = edge_functions(corners, from);
@@ -85,12 +93,59 @@ pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
     let topology = &atlas.topology;
     let corners = topology.corner_uvs[face as usize];
     let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
-    match walk_in_chart(topology, face, None, centroid, uv) {
+    match walk_in_chart(atlas, face, None, centroid, uv, false) {
         Stop::Arrived { face } => Some(Home { face, point: uv }),
         Stop::Boundary { side, point } => Some(Home { face: topology.sides[side as usize].face, point }),
         Stop::Lost => None,
     }
 }
+
+/// Moves the start of a walk from `from` towards `target` over the texels that no chart boundary
+/// touches (sphere tracing on [`Coverage::chart_distance`]): a point of a texel at distance `d`
+/// has only such texels of its own chart within `(d - 2)` texels, so the straight segment crosses
+/// nothing there and the walk can resume further on, in the face under the texel's centre. Returns
+/// the face and point to resume from, or `None` when no step was possible.
+///
+/// [`Coverage::chart_distance`]: crate::raster::Coverage::chart_distance
+fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(u32, DVec2)> {
+    let coverage = &atlas.coverage;
+    let texel_size = 1.0 / coverage.resolution as f64;
+    let mut point = from;
+    let mut skipped = None;
+    loop {
+        let texel = atlas.texel_at(point).filter(|&t| coverage.chart[t] == chart)?;
+        let distance = f64::from(coverage.chart_distance[texel]);
+        if distance < MIN_SKIP {
+            break;
+        }
+        let safe = (distance - 2.0) * texel_size;
+        let remaining = target - point;
+        let length = remaining.length();
+        let reaches_target = length <= safe;
+        point = if reaches_target { target } else { point + remaining * (safe / length) };
+        let texel = atlas.texel_at(point)?;
+        skipped = Some(texel);
+        if reaches_target {
+            break;
+        }
+    }
+    let texel = skipped?;
+    let face = u32::try_from(coverage.face[texel]).ok()?;
+    let topology = &atlas.topology;
+    let [b1, b2] = coverage.bary[texel].map(f64::from);
+    let corners = topology.corner_uvs[face as usize];
+    let under_centre = corners[0] * (1.0 - b1 - b2) + corners[1] * b1 + corners[2] * b2;
+    match walk_in_chart(atlas, face, None, under_centre, point, false) {
+        Stop::Arrived { face } => Some((face, point)),
+        Stop::Boundary { .. } | Stop::Lost => None,
+    }
+}
+
+/// Chart distance (texels) from which a skip is worth a texel lookup and a short walk.
+const MIN_SKIP: f64 = 4.0;
+
+/// Faces walked between two attempts to skip ahead.
+const SKIP_EVERY: usize = 8;
 
 /// Locates `target` by walking from `home`, crossing at most `max_jumps` seams.
 pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Located {
@@ -99,7 +154,7 @@ pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Locate
     let mut m_path = DMat2::IDENTITY;
     let mut jumps = 0;
     loop {
-        match walk_in_chart(topology, face, entry, from, target) {
+        match walk_in_chart(atlas, face, entry, from, target, true) {
             Stop::Arrived { face } => {
                 let chart = topology.face_chart[face as usize];
                 return Located::Inside { chart, uv: target, m_path, jumps, face: Some(face) };

@@ -1,44 +1,117 @@
-//! Gathering a neighbourhood whose ellipse really covers the ball. Where the metric varies strongly
-//! over the neighbourhood (distorted charts), the ellipse of the centre's metric can end inside the
-//! ball; samples accepted at the rim of the pattern reveal that, and the neighbourhood is gathered
-//! again with a larger margin instead of being estimated over a truncated region.
+//! Gathering a neighbourhood whose sampling domain really covers the ball. Where the metric varies
+//! strongly over the neighbourhood (near the poles of a latitude-longitude chart, across distorted
+//! charts), the ellipse of the centre's metric can end inside the ball; samples accepted at the rim
+//! of the pattern reveal that. The domain then grows only in the directions that need it (see
+//! [`Reach`]): probes along each direction find how far the ball reaches, and the neighbourhood is
+//! gathered once more instead of being estimated over a truncated region.
 
-use super::neighbourhood::{ellipse_area, gather, Centre, Sample, SampleCounts, SamplerSettings};
+use super::neighbourhood::{gather, distance_inside, unit_ellipse, Centre, Sample, SampleCounts, SamplerSettings};
+use super::reach::{Reach, DIRECTIONS};
 use crate::atlas::Atlas;
-use glam::DVec2;
+use glam::{DMat2, DVec2};
 
-/// Largest ellipse margin the coverage check grows to.
+/// Largest margin the coverage check grows a direction to.
 pub const MAX_MARGIN: f64 = 4.0;
 
-/// Pattern radius beyond which an accepted sample shows that the ellipse did not reach around the
+/// Pattern radius beyond which an accepted sample shows that the domain did not reach around the
 /// ball in its direction: with a matching metric and margin `m` the ball ends at radius `1/m`.
 const EDGE_RADIUS: f64 = 0.95;
 
-/// `true` when no accepted sample came from the rim of the pattern.
-fn covers_the_ball(samples: &[Sample], pattern: &[DVec2]) -> bool {
-    samples.iter().all(|s| pattern[s.pattern_index as usize].length_squared() < EDGE_RADIUS * EDGE_RADIUS)
+/// Factor a direction's margin grows by when its rim samples are inside the ball.
+const GROWTH: f64 = 1.5;
+
+/// Smallest growth of a probed direction, and the slack over the predicted boundary.
+const MIN_GROWTH: f64 = 1.1;
+const PROBE_SAFETY: f64 = 1.1;
+
+/// Probes per direction (the prediction converges in one or two).
+const MAX_PROBES: usize = 6;
+
+/// Gathers per neighbourhood: the first, one after probing, one more where rim samples remain
+/// between the probed directions. Where the ball wraps around a thin part (a tube narrower than
+/// the radius) no margin covers it, and further rounds only cost time.
+const MAX_GATHERS: usize = 3;
+
+/// Directions next to an accepted sample from the rim of the pattern.
+fn rim_directions(samples: &[Sample], pattern: &[DVec2], psi: f64) -> [bool; DIRECTIONS] {
+    let turn = DMat2::from_angle(psi);
+    let mut marked = [false; DIRECTIONS];
+    for sample in samples {
+        let disk = pattern[sample.pattern_index as usize];
+        if disk.length_squared() >= EDGE_RADIUS * EDGE_RADIUS {
+            let w = turn * disk;
+            let (below, above, _) = Reach::bracket(w.y.atan2(w.x));
+            marked[below] = true;
+            marked[above] = true;
+        }
+    }
+    marked
 }
 
-/// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` turned by `psi`;
-/// with `grow`, the margin of `sampler` is raised by half until the ellipse covers the ball (or
-/// reaches [`MAX_MARGIN`]). Returns the counts and the parametric ellipse area used; `sampler` keeps
-/// the final margin (for a second stage).
+/// Grows every direction's margin while the surface point at its rim is still inside the ball.
+/// Along a ray the distance from `p` grows about linearly, so a rim point at distance `d < r`
+/// predicts the boundary at `r / d` times its pattern radius: one or two probes usually settle a
+/// direction, and the margin ends just past the ball instead of a fixed step beyond it.
+fn probe(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, reach: &mut Reach) {
+    let ellipse = unit_ellipse(centre, sampler);
+    for k in 0..DIRECTIONS {
+        let angle = Reach::direction_angle(k);
+        let direction = DVec2::new(angle.cos(), angle.sin());
+        let mut margin = reach.margin(k);
+        for _ in 0..MAX_PROBES {
+            if margin >= MAX_MARGIN {
+                break;
+            }
+            let target = centre.uv + ellipse * (EDGE_RADIUS * margin * direction);
+            let Some(distance) = distance_inside(atlas, centre, target, sampler) else {
+                break;
+            };
+            let predicted = sampler.radius / distance.max(1e-3 * sampler.radius);
+            margin = (margin * (predicted * PROBE_SAFETY).max(MIN_GROWTH)).min(MAX_MARGIN);
+        }
+        reach.set_margin(k, margin);
+    }
+}
+
+/// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` turned by `psi`
+/// and the margin of `sampler` in every direction; with `grow`, directions whose rim samples are
+/// still inside the ball grow (up to [`MAX_MARGIN`]) and the neighbourhood is gathered again.
+/// Returns the counts and the final reach (for a second stage).
 pub fn gather_covering(
     atlas: &Atlas,
     centre: &Centre,
     pattern: &[DVec2],
     psi: f64,
-    sampler: &mut SamplerSettings,
+    sampler: &SamplerSettings,
     grow: bool,
     out: &mut Vec<Sample>,
-) -> (SampleCounts, f64) {
+) -> (SampleCounts, Reach) {
+    let mut reach = Reach::uniform(sampler.margin);
+    let mut probed = false;
+    let mut gathers = 0;
     loop {
         out.clear();
-        let area = ellipse_area(centre, sampler);
-        let counts = gather(atlas, centre, pattern, psi, area / pattern.len() as f64, sampler, out);
-        if !grow || sampler.margin >= MAX_MARGIN || covers_the_ball(out, pattern) {
-            return (counts, area);
+        let counts = gather(atlas, centre, pattern, psi, &reach, sampler, out);
+        gathers += 1;
+        if !grow || gathers == MAX_GATHERS {
+            return (counts, reach);
         }
-        sampler.margin = (sampler.margin * 1.5).min(MAX_MARGIN);
+        let marked = rim_directions(out, pattern, psi);
+        if !marked.contains(&true) {
+            return (counts, reach);
+        }
+        let before = reach;
+        if !probed {
+            probe(atlas, centre, sampler, &mut reach);
+            probed = true;
+        }
+        for (k, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
+            if reach.margin(k) == before.margin(k) {
+                reach.set_margin(k, (reach.margin(k) * GROWTH).min(MAX_MARGIN));
+            }
+        }
+        if reach == before {
+            return (counts, reach);
+        }
     }
 }

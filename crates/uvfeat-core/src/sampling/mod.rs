@@ -4,11 +4,13 @@
 mod coverage;
 mod neighbourhood;
 mod pattern;
+mod reach;
 mod tile;
 
 pub use coverage::{gather_covering, MAX_MARGIN};
 pub use neighbourhood::{
-    arc_distance, centre_at, ellipse_area, gather, Centre, Criterion, Sample, SampleCounts, SamplerSettings,
+    arc_distance, centre_at, distance_inside, gather, unit_ellipse, Centre, Criterion, Sample, SampleCounts, SamplerSettings,
 };
 pub use pattern::{concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, TURNS};
+pub use reach::{Reach, DIRECTIONS};
 pub use tile::{neighbourhood_tile, NeighbourhoodTile};

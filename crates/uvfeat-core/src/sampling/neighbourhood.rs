@@ -4,7 +4,8 @@
 
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
-use crate::lookup::{evaluate_face, surface_point};
+use super::reach::Reach;
+use crate::lookup::{evaluate_face, surface_point, SurfacePoint};
 use crate::raster::Precision;
 use crate::relocation::{home, locate_with, Home, Located, Relocation};
 use glam::{DMat2, DVec2, DVec3};
@@ -115,10 +116,17 @@ pub fn centre_at(atlas: &Atlas, uv: DVec2) -> Option<Centre> {
     })
 }
 
-/// Parametric area of the sampling ellipse, `A_uv = pi m^2 r^2 / (sigma_1 sigma_2)`.
-pub fn ellipse_area(centre: &Centre, settings: &SamplerSettings) -> f64 {
-    let mr = settings.margin * settings.radius;
-    std::f64::consts::PI * mr * mr / centre.distortion.area_element()
+/// The centre's metric ellipse for unit margin: maps a disk point `w` to the parametric offset
+/// `R(theta) diag(r / sigma_1, r / sigma_2) w`.
+pub fn unit_ellipse(centre: &Centre, settings: &SamplerSettings) -> DMat2 {
+    let d = centre.distortion;
+    let r = settings.radius;
+    DMat2::from_angle(d.theta) * DMat2::from_diagonal(DVec2::new(r / d.sigma1, r / d.sigma2))
+}
+
+/// Parametric area of the unit-margin ellipse, `A_uv = pi r^2 / (sigma_1 sigma_2)`.
+fn unit_ellipse_area(centre: &Centre, settings: &SamplerSettings) -> f64 {
+    std::f64::consts::PI * settings.radius * settings.radius / centre.distortion.area_element()
 }
 
 /// Arc-length geodesic estimate (SPEC §2.5a, `geodesic = "arc"`): the length of the circle arc
@@ -132,54 +140,82 @@ pub fn arc_distance(distance: f64, sin_alpha: f64) -> f64 {
     }
 }
 
-/// Samples the neighbourhood of `centre` with `pattern` (unit-disk points) rotated by `psi`;
-/// `sample_area` is the parametric area each pattern point stands for (`A_uv / N`). Accepted
-/// samples are appended to `out` (no allocation once it has grown).
+/// Where a parametric `target` reached from the centre lies on the surface.
+enum Reached {
+    Surface { point: SurfacePoint, m_path: DMat2 },
+    Border,
+    Missing,
+}
+
+fn reach_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Reached {
+    let located =
+        locate_with(atlas, settings.relocation, centre.uv, Some(&centre.home), centre.chart, target, settings.max_jumps);
+    let (chart, uv, m_path, face) = match located {
+        Located::Inside { chart, uv, m_path, face, .. } => (chart, uv, m_path, face),
+        Located::Border => return Reached::Border,
+        Located::Missing => return Reached::Missing,
+    };
+    let point = match face {
+        Some(face) => evaluate_face(atlas, face, uv),
+        None => surface_point(atlas, uv, chart),
+    };
+    match point {
+        Some(point) => Reached::Surface { point, m_path },
+        None => Reached::Missing,
+    }
+}
+
+fn is_inside(distance: f64, sin_alpha: f64, settings: &SamplerSettings) -> bool {
+    match settings.criterion {
+        Criterion::Euclidean => distance < settings.radius,
+        Criterion::Geodesic => arc_distance(distance, sin_alpha) < settings.radius,
+    }
+}
+
+/// Distance `|q - p|` of the surface point `q` reached at `target` when it lies in the ball
+/// `S(p, r)`; `None` outside it or off the surface (a mesh border or a failed relocation ends the
+/// neighbourhood there too).
+pub fn distance_inside(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Option<f64> {
+    let Reached::Surface { point, .. } = reach_target(atlas, centre, target, settings) else {
+        return None;
+    };
+    let offset = rounded(point.position, atlas.precision) - centre.position;
+    let distance = offset.length();
+    is_inside(distance, centre.normal.dot(offset) / distance.max(f64::MIN_POSITIVE), settings).then_some(distance)
+}
+
+/// Samples the neighbourhood of `centre` with `pattern` (unit-disk points) rotated by `psi` and
+/// stretched per direction by `reach`. Each sample stands for `m(phi)^2 A_uv / N` of parametric
+/// area (see [`Reach`]). Accepted samples are appended to `out` (no allocation once it has grown).
 pub fn gather(
     atlas: &Atlas,
     centre: &Centre,
     pattern: &[DVec2],
     psi: f64,
-    sample_area: f64,
+    reach: &Reach,
     settings: &SamplerSettings,
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
-    let d = centre.distortion;
-    let mr = settings.margin * settings.radius;
-    let ellipse = DMat2::from_angle(d.theta)
-        * DMat2::from_diagonal(DVec2::new(mr / d.sigma1, mr / d.sigma2))
-        * DMat2::from_angle(psi);
+    let ellipse = unit_ellipse(centre, settings);
+    let turn = DMat2::from_angle(psi);
+    let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
+    let uniform = reach.is_uniform().then(|| reach.margin(0));
     let r = settings.radius;
     let mut counts = SampleCounts::default();
     for (pattern_index, &disk) in pattern.iter().enumerate() {
-        let target = centre.uv + ellipse * disk;
-        let located = locate_with(
-            atlas,
-            settings.relocation,
-            centre.uv,
-            Some(&centre.home),
-            centre.chart,
-            target,
-            settings.max_jumps,
-        );
-        let (chart, uv, m_path, face) = match located {
-            Located::Inside { chart, uv, m_path, face, .. } => (chart, uv, m_path, face),
-            Located::Border => {
+        let w = turn * disk;
+        let margin = uniform.unwrap_or_else(|| reach.at(w.y.atan2(w.x)));
+        let target = centre.uv + ellipse * (margin * w);
+        let (point, m_path) = match reach_target(atlas, centre, target, settings) {
+            Reached::Surface { point, m_path } => (point, m_path),
+            Reached::Border => {
                 counts.border += 1;
                 continue;
             }
-            Located::Missing => {
+            Reached::Missing => {
                 counts.missing += 1;
                 continue;
             }
-        };
-        let point = match face {
-            Some(face) => evaluate_face(atlas, face, uv),
-            None => surface_point(atlas, uv, chart),
-        };
-        let Some(point) = point else {
-            counts.missing += 1;
-            continue;
         };
         let q = rounded(point.position, atlas.precision);
         let offset = q - centre.position;
@@ -188,18 +224,14 @@ pub fn gather(
             continue;
         }
         let sin_alpha = centre.normal.dot(offset) / distance;
-        let inside = match settings.criterion {
-            Criterion::Euclidean => distance < r,
-            Criterion::Geodesic => arc_distance(distance, sin_alpha) < r,
-        };
-        if !inside {
+        if !is_inside(distance, sin_alpha, settings) {
             continue;
         }
         counts.valid += 1;
         out.push(Sample {
             position: q,
             normal: rounded(point.normal, atlas.precision),
-            area: point.area_element * m_path.determinant().abs() * sample_area,
+            area: point.area_element * m_path.determinant().abs() * cell_area * margin * margin,
             distance,
             sin_alpha,
             pattern_index: pattern_index as u32,

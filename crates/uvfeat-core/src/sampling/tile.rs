@@ -48,8 +48,7 @@ pub fn neighbourhood_tile(
             let centre = centre_at(atlas, uv)?;
             let mut samples = Vec::with_capacity(n);
             let psi = pixel_angle(i as u32, j as u32, settings.seed);
-            let mut sampler = sampler;
-            gather_covering(atlas, &centre, &pattern, psi, &mut sampler, settings.grow_margin, &mut samples);
+            gather_covering(atlas, &centre, &pattern, psi, &sampler, settings.grow_margin, &mut samples);
             Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
         })
         .collect();
