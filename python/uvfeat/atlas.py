@@ -220,7 +220,8 @@ class Atlas:
             The paper's choices where they differ from ours (SPEC §1.10), for reproduction.
         **options
             ``margin`` (1.25), ``grow_margin`` (True: sample again over a larger domain where the
-            ellipse did not cover the ball), ``max_jumps`` (32), ``relocation`` ("walk" | "march"), ``criterion`` ("euclidean" | "geodesic"),
+            ellipse did not cover the ball), ``max_jumps`` (32), ``relocation`` ("walk" | "march" | "per_chart"), ``criterion`` ("euclidean" | "geodesic"),
+            ``lookup`` ("triangle" | "bilinear"), ``geodesic`` ("arc" | "chord_sum"),
             ``gaussian_method`` ("moments" | "geodesic_area"), ``volume_weighting``
             ("distance" | "uniform"), ``rho_min`` (0.1, fraction of r), ``flat_tol`` (1e-3),
             ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct"),

@@ -29,6 +29,8 @@ DEFAULT_OPTIONS = {
     "max_jumps": 32,
     "relocation": "walk",
     "criterion": "euclidean",
+    "lookup": "triangle",
+    "geodesic": "arc",
     "gaussian_method": "moments",
     "method": "integral",
     "volume_weighting": "distance",
@@ -39,10 +41,10 @@ DEFAULT_OPTIONS = {
     "query": "texture",
 }
 
-#: What ``paper_mode=True`` changes (SPEC §1.10). The paper's per-chart pattern repetition,
-#: bilinear texel lookup and chord-sum geodesics are not reproduced yet: uvfeat keeps per-sample
-#: relocation, exact triangle lookup and arc geodesics there, and says so with a warning.
-PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
+#: What ``paper_mode=True`` changes (SPEC §1.10). The paper's f16 buffers belong to the atlas:
+#: ``Atlas(mesh, precision="f16")``.
+PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "relocation": "per_chart", "lookup": "bilinear",
+                 "geodesic": "chord_sum", "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
 
 
 def feature_names(features) -> list[str]:
@@ -84,9 +86,9 @@ def resolve_options(options: dict, paper_mode: bool) -> dict:
     resolved = dict(DEFAULT_OPTIONS)
     if paper_mode:
         resolved.update(PAPER_OPTIONS)
-        warnings.warn("paper_mode: margin 1, one jump, geodesic-area K and uniform volume weighting as in the paper; "
-                      "per-chart repetition, bilinear lookup and chord-sum geodesics are not reproduced yet",
-                      UserWarning, stacklevel=3)
+        warnings.warn("paper_mode: the paper's choices (margin 1, per-chart repetition with one jump, bilinear "
+                      "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
+                      "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=3)
     resolved.update(options)
     return resolved
 
@@ -167,10 +169,9 @@ class FeatureMap:
 
 
 def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
-    return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), float(opts["tau"]), int(seed),
-                                  float(opts["margin"]), bool(opts["grow_margin"]), int(opts["max_jumps"]), opts["relocation"], opts["criterion"],
-                                  opts["gaussian_method"], opts["volume_weighting"], float(opts["rho_min"]),
-                                  float(opts["flat_tol"]), bool(opts["standard_error"]), opts["method"])
+    # Each option converted to the type of its default (a user's margin=2 or max_jumps=8.0).
+    core_options = {name: type(default)(opts[name]) for name, default in DEFAULT_OPTIONS.items() if name != "query"}
+    return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), int(seed), core_options)
 
 
 def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):

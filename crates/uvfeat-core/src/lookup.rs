@@ -1,5 +1,6 @@
-//! Surface lookup at a parametric point (SPEC §1.3, `lookup = "triangle"`): the exact
-//! barycentric interpolation of the face the point's texel shows.
+//! Surface lookup at a parametric point (SPEC §1.3): the exact interpolation of the face the
+//! point's texel shows (`lookup = "triangle"`, default), or the paper's bilinear filtering of the
+//! geometry buffers (`lookup = "bilinear"`).
 
 use crate::atlas::Atlas;
 use glam::{DVec2, DVec3};
@@ -15,6 +16,82 @@ pub struct SurfacePoint {
     pub face: u32,
     /// Area element `J = sigma_1 sigma_2` of that face (object area per uv area).
     pub area_element: f64,
+}
+
+/// How a parametric point is turned into a surface point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Lookup {
+    /// The face's own interpolation, with the smooth (Phong) lift (default).
+    #[default]
+    Triangle,
+    /// Bilinear filtering of the four nearest texels of the geometry buffers that belong to the
+    /// chart, as a GPU texture fetch does (the paper's; flat facets, buffer precision, and a blur
+    /// of one texel across faces).
+    Bilinear,
+}
+
+impl Lookup {
+    /// The surface at `uv` in `chart`; `face` is the face containing `uv` when the caller knows it
+    /// (the walk found it).
+    #[inline]
+    pub fn evaluate(self, atlas: &Atlas, face: Option<u32>, uv: DVec2, chart: i32) -> Option<SurfacePoint> {
+        match (self, face) {
+            (Lookup::Triangle, Some(face)) => evaluate_face(atlas, face, uv),
+            _ => self.surface_point(atlas, uv, chart),
+        }
+    }
+
+    /// The surface at `uv` in `chart`.
+    #[inline]
+    pub fn surface_point(self, atlas: &Atlas, uv: DVec2, chart: i32) -> Option<SurfacePoint> {
+        match self {
+            Lookup::Triangle => surface_point(atlas, uv, chart),
+            Lookup::Bilinear => bilinear_point(atlas, uv, chart),
+        }
+    }
+}
+
+/// Bilinear filtering of the buffers at `uv` over the texels of `chart` among the four nearest
+/// (weights renormalised); the nearest texel of `chart` where none of the four belongs to it.
+fn bilinear_point(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<SurfacePoint> {
+    let coverage = &atlas.coverage;
+    let buffers = &atlas.buffers;
+    let n = atlas.resolution() as i64;
+    let (x, y) = (uv.x * n as f64 - 0.5, uv.y * n as f64 - 0.5);
+    let (i0, j0) = (x.floor() as i64, y.floor() as i64);
+    let (fx, fy) = (x - i0 as f64, y - j0 as f64);
+    let usable = |t: usize| coverage.chart[t] == chart && buffers.position[t][0].is_finite();
+    let mut texels = [(0usize, 0.0f64); 4];
+    let mut count = 0;
+    for (di, dj, weight) in
+        [(0, 0, (1.0 - fx) * (1.0 - fy)), (1, 0, fx * (1.0 - fy)), (0, 1, (1.0 - fx) * fy), (1, 1, fx * fy)]
+    {
+        let (i, j) = (i0 + di, j0 + dj);
+        if i >= 0 && j >= 0 && i < n && j < n && usable((j * n + i) as usize) && weight > 0.0 {
+            texels[count] = ((j * n + i) as usize, weight);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        texels[0] = (atlas.nearest_texel(uv, usable)?, 1.0);
+        count = 1;
+    }
+    let texels = &texels[..count];
+    let total: f64 = texels.iter().map(|&(_, w)| w).sum();
+    let mut point = SurfacePoint { position: DVec3::ZERO, normal: DVec3::ZERO, face: 0, area_element: 0.0 };
+    let mut heaviest = 0.0;
+    for &(t, w) in texels {
+        let w = w / total;
+        point.position += DVec3::from_array(buffers.position[t].map(f64::from)) * w;
+        point.normal += DVec3::from_array(buffers.normal[t].map(f64::from)) * w;
+        point.area_element += f64::from(buffers.sigma[t][0]) * f64::from(buffers.sigma[t][1]) * w;
+        if w > heaviest {
+            heaviest = w;
+            point.face = u32::try_from(coverage.face[t]).ok()?;
+        }
+    }
+    point.normal = point.normal.try_normalize()?;
+    Some(point)
 }
 
 /// Evaluates the surface at `uv`, expected in `chart`.

@@ -8,9 +8,10 @@ use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use uvfeat_core::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeighting};
+use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::{per_vertex, per_vertex_directions, ComputeSettings, FeatureMaps, VertexQuery};
 use uvfeat_core::relocation::Relocation;
-use uvfeat_core::sampling::{neighbourhood_tile, Criterion};
+use uvfeat_core::sampling::{neighbourhood_tile, Criterion, Geodesic};
 use uvfeat_core::UvfeatError;
 
 pub(crate) fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
@@ -35,53 +36,60 @@ pub(crate) fn curvature_method_named(value: &str) -> PyResult<CurvatureMethod> {
     choice("method", value, &[("integral", CurvatureMethod::Integral), ("fit", CurvatureMethod::Fit)])
 }
 
-/// Builds and validates core settings from the Python keyword arguments.
-#[allow(clippy::too_many_arguments)]
+/// The entry `name` of the options dictionary.
+fn item<'py>(options: &Bound<'py, PyDict>, name: &'static str) -> PyResult<Bound<'py, PyAny>> {
+    options
+        .get_item(name)?
+        .ok_or_else(|| to_py(UvfeatError::InvalidParameter { name, reason: "missing from the options".into() }))
+}
+
+/// Builds and validates core settings from the Python arguments; `options` holds every option of
+/// `uvfeat.features.DEFAULT_OPTIONS`, already converted to bool, int, float or str.
 #[pyfunction]
-#[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, tau, seed, margin, grow_margin, max_jumps,
-                    relocation, criterion, gaussian_method, volume_weighting, rho_min, flat_tol, standard_error, method))]
+#[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, seed, options))]
 pub fn compute_settings(
     features: Vec<String>,
     radius: f64,
     samples: usize,
     compute_resolution: usize,
     adaptive: bool,
-    tau: f64,
     seed: u64,
-    margin: f64,
-    grow_margin: bool,
-    max_jumps: u32,
-    relocation: &str,
-    criterion: &str,
-    gaussian_method: &str,
-    volume_weighting: &str,
-    rho_min: f64,
-    flat_tol: f64,
-    standard_error: bool,
-    method: &str,
+    options: &Bound<'_, PyDict>,
 ) -> PyResult<PySettings> {
+    let text = |name: &'static str| -> PyResult<String> { item(options, name)?.extract::<String>() };
+    let number = |name: &'static str| -> PyResult<f64> { item(options, name)?.extract::<f64>() };
+    let flag = |name: &'static str| -> PyResult<bool> { item(options, name)?.extract::<bool>() };
     let mut s = ComputeSettings::new(feature_list(&features)?, radius);
     s.samples = samples;
     s.resolution = compute_resolution;
     s.adaptive = adaptive;
-    s.tau = tau;
     s.seed = seed;
-    s.margin = margin;
-    s.grow_margin = grow_margin;
-    s.max_jumps = max_jumps;
-    s.relocation = choice("relocation", relocation, &[("walk", Relocation::Walk), ("march", Relocation::March)])?;
-    s.criterion =
-        choice("criterion", criterion, &[("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)])?;
+    s.tau = number("tau")?;
+    s.margin = number("margin")?;
+    s.grow_margin = flag("grow_margin")?;
+    s.max_jumps = item(options, "max_jumps")?.extract::<u32>()?;
+    s.relocation = choice(
+        "relocation",
+        &text("relocation")?,
+        &[("walk", Relocation::Walk), ("march", Relocation::March), ("per_chart", Relocation::PerChart)],
+    )?;
+    s.criterion = choice(
+        "criterion",
+        &text("criterion")?,
+        &[("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)],
+    )?;
+    s.lookup = choice("lookup", &text("lookup")?, &[("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)])?;
+    s.geodesic = choice("geodesic", &text("geodesic")?, &[("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)])?;
     s.gaussian_method = choice(
         "gaussian_method",
-        gaussian_method,
+        &text("gaussian_method")?,
         &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
     )?;
-    s.volume_weighting = volume_weighting_named(volume_weighting)?;
-    s.method = curvature_method_named(method)?;
-    s.rho_min_fraction = rho_min;
-    s.flat_tol = flat_tol;
-    s.standard_errors = standard_error;
+    s.volume_weighting = volume_weighting_named(&text("volume_weighting")?)?;
+    s.method = curvature_method_named(&text("method")?)?;
+    s.rho_min_fraction = number("rho_min")?;
+    s.flat_tol = number("flat_tol")?;
+    s.standard_errors = flag("standard_error")?;
     s.validate().map_err(to_py)?;
     Ok(PySettings { inner: s })
 }

@@ -223,6 +223,7 @@ mod tests {
                     area: rho,
                     distance: rho,
                     sin_alpha: 0.0,
+                    geodesic: rho,
                     pattern_index: 0,
                 });
             }

@@ -1,7 +1,7 @@
 //! One pass over a neighbourhood's samples collects every weighted sum the estimators need
 //! (several features from one pass), plus what the adaptive sampler needs for standard errors.
 
-use crate::sampling::{arc_distance, Sample};
+use crate::sampling::Sample;
 
 /// Weighted sums of one integrand `g` with weights `w`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -112,7 +112,7 @@ impl NeighbourhoodStats {
             };
             self.elevation.add(w, s.sin_alpha);
             self.radial.add(w, s.distance / settings.radius);
-            let inside = arc_distance(s.distance, s.sin_alpha) < settings.radius;
+            let inside = s.geodesic < settings.radius;
             self.geodesic_disk.add(s.area, if inside { 1.0 } else { 0.0 });
             if s.distance >= settings.rho_min {
                 let inv_rho2 = 1.0 / (s.distance * s.distance);

@@ -6,7 +6,7 @@ use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::error::Result;
 use crate::features::{CurvatureMethod, Feature};
-use crate::sampling::pixel_angle;
+use crate::sampling::Placement;
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -71,8 +71,8 @@ impl FeatureMaps {
         pixels.par_chunks_mut(w).enumerate().for_each_init(Vec::new, |scratch, (j, row)| {
             for (i, pixel) in row.iter_mut().enumerate() {
                 let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-                let psi = pixel_angle(i as u32, j as u32, settings.seed);
-                *pixel = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
+                let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
+                *pixel = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
             }
         });
         let chart = (0..w * w)

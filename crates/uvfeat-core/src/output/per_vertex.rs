@@ -6,10 +6,9 @@ use super::pixel::{evaluate_point, Patterns};
 use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::features::CurvatureMethod;
-use crate::sampling::pcg_hash;
+use crate::sampling::Placement;
 use glam::DVec2;
 use rayon::prelude::*;
-use std::f64::consts::TAU;
 
 /// How per-vertex values are obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -86,9 +85,9 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
                 found.extend(list.iter().filter_map(|&(uv, chart)| lookup(maps, uv, chart)));
             }
             if found.is_empty() {
-                let psi = vertex_angle(vertex, settings.seed);
+                let placement = Placement::of_vertex(vertex as u32, settings.seed);
                 found.extend(list.iter().map(|&(uv, _)| {
-                    let result = evaluate_point(atlas, uv, psi, settings, &patterns, scratch);
+                    let result = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
                     maps.features.iter().map(|f| f64::from(result.values[f.index()])).collect()
                 }));
             }
@@ -109,9 +108,6 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
 }
 
 /// The pattern rotation of a vertex evaluated directly.
-fn vertex_angle(vertex: usize, seed: u64) -> f64 {
-    TAU * f64::from(pcg_hash(vertex as u32 ^ seed as u32)) / 4_294_967_296.0
-}
 
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
 /// at one corner UV of the vertex (a line field has no sign, so texels cannot be averaged
@@ -125,9 +121,9 @@ pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[
         .map_init(Vec::new, |scratch, (vertex, list)| {
             // The first corner where the fit succeeds: a corner UV on a chart's edge may fall on
             // a gutter texel of the raster, which has no centre.
-            let psi = vertex_angle(vertex, settings.seed);
+            let placement = Placement::of_vertex(vertex as u32, settings.seed);
             list.iter()
-                .map(|&(uv, _)| evaluate_point(atlas, uv, psi, &settings, &patterns, scratch).directions)
+                .map(|&(uv, _)| evaluate_point(atlas, uv, placement, &settings, &patterns, scratch).directions)
                 .find(|d| d[0][0].is_finite())
                 .unwrap_or([[f32::NAN; 3]; 2])
         })

@@ -6,7 +6,9 @@ use crate::atlas::Atlas;
 use crate::features::{
     estimate, quadric_fit, relative_standard_error, CurvatureMethod, NeighbourhoodStats, QuadricFit,
 };
-use crate::sampling::{centre_at, disk_pattern, gather, gather_covering, Centre, Sample, SampleCounts, TURNS};
+use crate::sampling::{
+    centre_at, disk_pattern, gather, gather_covering, Centre, Placement, Sample, SampleCounts, TURNS,
+};
 use glam::DVec2;
 
 /// Interleaved batches behind the standard errors.
@@ -65,17 +67,17 @@ impl PixelResult {
     };
 }
 
-/// Evaluates every feature at parametric point `uv` with rotation `psi`; `scratch` holds the
+/// Evaluates every feature at parametric point `uv` placed by `placement`; `scratch` holds the
 /// samples (reused across calls, so nothing is allocated per pixel).
 pub fn evaluate_point(
     atlas: &Atlas,
     uv: DVec2,
-    psi: f64,
+    placement: Placement,
     settings: &ComputeSettings,
     patterns: &Patterns,
     scratch: &mut Vec<Sample>,
 ) -> PixelResult {
-    let Some(centre) = centre_at(atlas, uv) else {
+    let Some(centre) = centre_at(atlas, uv, settings.lookup) else {
         return PixelResult::EMPTY;
     };
     let sampler = settings.sampler();
@@ -83,7 +85,7 @@ pub fn evaluate_point(
     let estimators = settings.estimators();
     let first = patterns.first.len();
     let (mut counts, reach) =
-        gather_covering(atlas, &centre, &patterns.first, psi, &sampler, settings.grow_margin, scratch);
+        gather_covering(atlas, &centre, &patterns.first, placement, &sampler, settings.grow_margin, scratch);
     let mut stats = NeighbourhoodStats::default();
     stats.accumulate(scratch, centre.normal, &stats_settings);
     let mut second_stage = false;
@@ -95,7 +97,7 @@ pub fn evaluate_point(
             let second = patterns.second.len();
             let total = (first + second) as f64;
             let start = scratch.len();
-            counts.add(gather(atlas, &centre, &patterns.second, psi, &reach, &sampler, scratch));
+            counts.add(gather(atlas, &centre, &patterns.second, placement, &reach, &sampler, scratch));
             // Each stage's samples stood for A_uv / N_stage; pooled they stand for A_uv / N.
             stats.scale_areas(first as f64 / total);
             let mut more = NeighbourhoodStats::default();

@@ -3,8 +3,9 @@
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
+use crate::lookup::Lookup;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, SamplerSettings};
+use crate::sampling::{Criterion, Geodesic, SamplerSettings};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,6 +29,10 @@ pub struct ComputeSettings {
     pub relocation: Relocation,
     /// Neighbourhood criterion (Euclidean).
     pub criterion: Criterion,
+    /// Surface lookup of centres and samples (exact triangle; bilinear = paper).
+    pub lookup: Lookup,
+    /// Geodesic distance estimate of the geodesic-area K and criterion (arc; chord sum = paper).
+    pub geodesic: Geodesic,
     /// Seed of the pattern and the per-pixel rotations (0).
     pub seed: u64,
     /// Two-stage adaptive sampling (off).
@@ -61,6 +66,8 @@ impl ComputeSettings {
             max_jumps: 32,
             relocation: Relocation::Walk,
             criterion: Criterion::Euclidean,
+            lookup: Lookup::Triangle,
+            geodesic: Geodesic::Arc,
             seed: 0,
             adaptive: false,
             tau: 0.01,
@@ -114,6 +121,8 @@ impl ComputeSettings {
             max_jumps: self.max_jumps,
             relocation: self.relocation,
             criterion: self.criterion,
+            lookup: self.lookup,
+            geodesic: self.geodesic,
         }
     }
 

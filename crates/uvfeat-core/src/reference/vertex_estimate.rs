@@ -11,7 +11,7 @@ use super::neighbourhood::euclidean_neighbourhood;
 use super::stamped::StampedValues;
 use super::ReferenceGaussian;
 use crate::features::{estimate, quadric_fit, CurvatureMethod, EstimatorSettings, NeighbourhoodStats, StatsSettings};
-use crate::sampling::Sample;
+use crate::sampling::{arc_distance, Sample};
 
 /// Everything the per-vertex estimation reads.
 pub(super) struct Context<'a> {
@@ -75,12 +75,14 @@ pub(super) fn vertex_estimate(centre: u32, context: &Context, scratch: &mut Scra
             continue; // the centre itself
         }
         let q = geometry.positions[v as usize];
+        let sin_alpha = n.dot(q - p) / distance;
         scratch.samples.push(Sample {
             position: q,
             normal: geometry.normals[v as usize],
             area: geometry.areas[v as usize],
             distance,
-            sin_alpha: n.dot(q - p) / distance,
+            sin_alpha,
+            geodesic: arc_distance(distance, sin_alpha),
             pattern_index: 0,
         });
     }

@@ -51,7 +51,7 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
 
 /// First `k` in `1..=steps` with `origin + k step` outside `chart` (SPEC §1.5 march), skipping
 /// ahead by the chart distance of the current texel: the points skipped are provably inside.
-fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
+pub fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
     let coverage = &atlas.coverage;
     let mut k = 0;
     loop {

@@ -8,7 +8,7 @@
 mod march;
 mod walk;
 
-pub use march::{border_texel, cross_seam, march, Crossing};
+pub use march::{border_texel, cross_seam, first_exit, march, Crossing};
 pub use walk::{home, walk, Home};
 
 use crate::atlas::Atlas;
@@ -37,6 +37,10 @@ pub enum Relocation {
     Walk,
     /// The texel march of SPEC §1.5, through border texels.
     March,
+    /// The paper's per-chart pattern repetition (SPEC §1.6): the whole pattern is evaluated again
+    /// around the centre carried into each neighbouring chart (see `sampling::gather_per_chart`).
+    /// A single point located on its own is marched.
+    PerChart,
 }
 
 /// `true` when `target` lies in a texel of `chart` whose 3x3 neighbourhood is all `chart` and that
@@ -67,7 +71,7 @@ pub fn locate_with(
         return Located::Inside { chart, uv: target, m_path: DMat2::IDENTITY, jumps: 0, face: None };
     }
     match method {
-        Relocation::March => march(atlas, start, chart, target, max_jumps),
+        Relocation::March | Relocation::PerChart => march(atlas, start, chart, target, max_jumps),
         Relocation::Walk => match home.copied().or_else(|| walk::home(atlas, start, chart)) {
             Some(home) => walk(atlas, &home, target, max_jumps),
             None => Located::Missing,

@@ -45,7 +45,14 @@ fn edge_functions(corners: &[DVec2; 3], uv: DVec2) -> [f64; 3] {
 
 /// Walks from `from` (in `face`, entered through edge `entry`) towards `target` inside one chart;
 /// with `skipping`, every few faces it tries to jump ahead over texels no boundary touches.
-fn walk_in_chart(atlas: &Atlas, mut face: u32, mut entry: Option<u8>, mut from: DVec2, target: DVec2, skipping: bool) -> Stop {
+fn walk_in_chart(
+    atlas: &Atlas,
+    mut face: u32,
+    mut entry: Option<u8>,
+    mut from: DVec2,
+    target: DVec2,
+    skipping: bool,
+) -> Stop {
     let topology = &atlas.topology;
     let chart = topology.face_chart[face as usize];
     for step in 0..MAX_FACES {

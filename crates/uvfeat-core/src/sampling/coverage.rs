@@ -5,10 +5,12 @@
 //! [`Reach`]): probes along each direction find how far the ball reaches, and the neighbourhood is
 //! gathered once more instead of being estimated over a truncated region.
 
-use super::neighbourhood::{gather, distance_inside, unit_ellipse, Centre, Sample, SampleCounts, SamplerSettings};
+use super::gather::{distance_inside, gather};
+use super::neighbourhood::{unit_ellipse, Centre, Sample, SampleCounts, SamplerSettings};
+use super::pattern::Placement;
 use super::reach::{Reach, DIRECTIONS};
 use crate::atlas::Atlas;
-use glam::{DMat2, DVec2};
+use glam::DVec2;
 
 /// Largest margin the coverage check grows a direction to.
 pub const MAX_MARGIN: f64 = 4.0;
@@ -33,13 +35,11 @@ const MAX_PROBES: usize = 6;
 const MAX_GATHERS: usize = 3;
 
 /// Directions next to an accepted sample from the rim of the pattern.
-fn rim_directions(samples: &[Sample], pattern: &[DVec2], psi: f64) -> [bool; DIRECTIONS] {
-    let turn = DMat2::from_angle(psi);
+fn rim_directions(samples: &[Sample], pattern: &[DVec2], placement: Placement) -> [bool; DIRECTIONS] {
     let mut marked = [false; DIRECTIONS];
     for sample in samples {
-        let disk = pattern[sample.pattern_index as usize];
-        if disk.length_squared() >= EDGE_RADIUS * EDGE_RADIUS {
-            let w = turn * disk;
+        let w = placement.place(pattern[sample.pattern_index as usize]);
+        if w.length_squared() >= EDGE_RADIUS * EDGE_RADIUS {
             let (below, above, _) = Reach::bracket(w.y.atan2(w.x));
             marked[below] = true;
             marked[above] = true;
@@ -73,7 +73,7 @@ fn probe(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, reach: &mut 
     }
 }
 
-/// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` turned by `psi`
+/// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` placed by `placement`
 /// and the margin of `sampler` in every direction; with `grow`, directions whose rim samples are
 /// still inside the ball grow (up to [`MAX_MARGIN`]) and the neighbourhood is gathered again.
 /// Returns the counts and the final reach (for a second stage).
@@ -81,7 +81,7 @@ pub fn gather_covering(
     atlas: &Atlas,
     centre: &Centre,
     pattern: &[DVec2],
-    psi: f64,
+    placement: Placement,
     sampler: &SamplerSettings,
     grow: bool,
     out: &mut Vec<Sample>,
@@ -91,12 +91,12 @@ pub fn gather_covering(
     let mut gathers = 0;
     loop {
         out.clear();
-        let counts = gather(atlas, centre, pattern, psi, &reach, sampler, out);
+        let counts = gather(atlas, centre, pattern, placement, &reach, sampler, out);
         gathers += 1;
         if !grow || gathers == MAX_GATHERS {
             return (counts, reach);
         }
-        let marked = rim_directions(out, pattern, psi);
+        let marked = rim_directions(out, pattern, placement);
         if !marked.contains(&true) {
             return (counts, reach);
         }

@@ -1,13 +1,14 @@
-//! The weighted neighbourhood of one parametric point (SPEC §1.4, §1.7): pattern samples mapped
-//! onto the anisotropic ellipse of the centre's metric, relocated across seams, looked up exactly,
-//! rejected outside the ball of radius `r`, and weighted by the surface area they represent.
+//! The weighted neighbourhood of one parametric point (SPEC §1.4, §1.7): its centre, its samples
+//! and their acceptance. A surface point reached from the centre is kept when it lies in the ball
+//! of radius `r`, weighted by the surface area it represents (the gathering itself is in
+//! `gather.rs` and `per_chart.rs`).
 
+use super::geodesic::{arc_distance, chord_sum_distance, Geodesic};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
-use super::reach::Reach;
-use crate::lookup::{evaluate_face, surface_point, SurfacePoint};
+use crate::lookup::{Lookup, SurfacePoint};
 use crate::raster::Precision;
-use crate::relocation::{home, locate_with, Home, Located, Relocation};
+use crate::relocation::{home, Home, Relocation};
 use glam::{DMat2, DVec2, DVec3};
 use half::f16;
 
@@ -17,7 +18,7 @@ pub enum Criterion {
     /// `|q - p| < r` (default; the paper's).
     #[default]
     Euclidean,
-    /// Arc-length geodesic estimate `d_arc(p, q) < r` (SPEC §2.5).
+    /// Geodesic estimate `d(p, q) < r` (SPEC §2.5; see [`Geodesic`]).
     Geodesic,
 }
 
@@ -28,12 +29,16 @@ pub struct SamplerSettings {
     pub radius: f64,
     /// Ellipse coverage margin `m` (SPEC §3.2; 1.25 default, 1 = paper).
     pub margin: f64,
-    /// Seams a sample may cross (SPEC §1.5; 8 default, 1 = paper).
+    /// Seams a sample may cross (SPEC §1.5; 32 default, 1 = paper).
     pub max_jumps: u32,
     /// How samples that leave the chart are relocated.
     pub relocation: Relocation,
     /// Neighbourhood criterion.
     pub criterion: Criterion,
+    /// Surface lookup of the centre and the samples.
+    pub lookup: Lookup,
+    /// Geodesic distance estimate the samples carry.
+    pub geodesic: Geodesic,
 }
 
 /// The centre `p = P(s)` of a neighbourhood.
@@ -66,6 +71,8 @@ pub struct Sample {
     pub distance: f64,
     /// `sin(alpha_i) = n . (q_i - p) / rho_i`.
     pub sin_alpha: f64,
+    /// Geodesic distance estimate `d_i` (SPEC §2.5a).
+    pub geodesic: f64,
     /// Index of the pattern point the sample came from.
     pub pattern_index: u32,
 }
@@ -98,10 +105,10 @@ fn rounded(v: DVec3, precision: Precision) -> DVec3 {
 }
 
 /// The centre at parametric location `uv`; `None` off the charts or on a face degenerate in 3D.
-pub fn centre_at(atlas: &Atlas, uv: DVec2) -> Option<Centre> {
+pub fn centre_at(atlas: &Atlas, uv: DVec2, lookup: Lookup) -> Option<Centre> {
     let chart = atlas.chart_at(uv);
     let home = home(atlas, uv, chart)?;
-    let point = evaluate_face(atlas, home.face, home.point)?;
+    let point = lookup.evaluate(atlas, Some(home.face), home.point, chart)?;
     let distortion = atlas.frame.sampling_distortion(&atlas.topology, home.face, home.point);
     if !(distortion.sigma2 > 1e-12 * distortion.sigma1) {
         return None;
@@ -125,117 +132,66 @@ pub fn unit_ellipse(centre: &Centre, settings: &SamplerSettings) -> DMat2 {
 }
 
 /// Parametric area of the unit-margin ellipse, `A_uv = pi r^2 / (sigma_1 sigma_2)`.
-fn unit_ellipse_area(centre: &Centre, settings: &SamplerSettings) -> f64 {
+pub fn unit_ellipse_area(centre: &Centre, settings: &SamplerSettings) -> f64 {
     std::f64::consts::PI * settings.radius * settings.radius / centre.distortion.area_element()
 }
 
-/// Arc-length geodesic estimate (SPEC §2.5a, `geodesic = "arc"`): the length of the circle arc
-/// tangent to the surface at `p` through `q`, `d = rho asin(y)/y`, `y = min(1, |sin alpha|)`.
-pub fn arc_distance(distance: f64, sin_alpha: f64) -> f64 {
-    let y = sin_alpha.abs().min(1.0);
-    if y < 1e-4 {
-        distance * (1.0 + y * y / 6.0)
-    } else {
-        distance * y.asin() / y
-    }
-}
-
-/// Where a parametric `target` reached from the centre lies on the surface.
-enum Reached {
-    Surface { point: SurfacePoint, m_path: DMat2 },
-    Border,
-    Missing,
-}
-
-fn reach_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Reached {
-    let located =
-        locate_with(atlas, settings.relocation, centre.uv, Some(&centre.home), centre.chart, target, settings.max_jumps);
-    let (chart, uv, m_path, face) = match located {
-        Located::Inside { chart, uv, m_path, face, .. } => (chart, uv, m_path, face),
-        Located::Border => return Reached::Border,
-        Located::Missing => return Reached::Missing,
-    };
-    let point = match face {
-        Some(face) => evaluate_face(atlas, face, uv),
-        None => surface_point(atlas, uv, chart),
-    };
-    match point {
-        Some(point) => Reached::Surface { point, m_path },
-        None => Reached::Missing,
-    }
-}
-
-fn is_inside(distance: f64, sin_alpha: f64, settings: &SamplerSettings) -> bool {
+/// `true` when a point at `distance` from the centre, with elevation `sin_alpha`, is in the ball
+/// for the probes of the coverage check (the arc estimate stands in for any geodesic).
+pub fn is_inside(distance: f64, sin_alpha: f64, settings: &SamplerSettings) -> bool {
     match settings.criterion {
         Criterion::Euclidean => distance < settings.radius,
         Criterion::Geodesic => arc_distance(distance, sin_alpha) < settings.radius,
     }
 }
 
-/// Distance `|q - p|` of the surface point `q` reached at `target` when it lies in the ball
-/// `S(p, r)`; `None` outside it or off the surface (a mesh border or a failed relocation ends the
-/// neighbourhood there too).
-pub fn distance_inside(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Option<f64> {
-    let Reached::Surface { point, .. } = reach_target(atlas, centre, target, settings) else {
-        return None;
-    };
-    let offset = rounded(point.position, atlas.precision) - centre.position;
-    let distance = offset.length();
-    is_inside(distance, centre.normal.dot(offset) / distance.max(f64::MIN_POSITIVE), settings).then_some(distance)
+/// A surface point reached by one pattern sample, before the ball test.
+pub struct Candidate {
+    /// The surface point `q`.
+    pub point: SurfacePoint,
+    /// Parametric area it stands for, `|det M_path| a m(phi)^2` (times `J` gives `dA`).
+    pub uv_area: f64,
+    /// Its parametric location when it lies in the centre's chart without a crossing (for the
+    /// chord-sum geodesic).
+    pub own_chart_uv: Option<DVec2>,
+    /// Index of the pattern point.
+    pub pattern_index: u32,
 }
 
-/// Samples the neighbourhood of `centre` with `pattern` (unit-disk points) rotated by `psi` and
-/// stretched per direction by `reach`. Each sample stands for `m(phi)^2 A_uv / N` of parametric
-/// area (see [`Reach`]). Accepted samples are appended to `out` (no allocation once it has grown).
-pub fn gather(
+/// Appends `candidate` to `out` when it lies in the neighbourhood `S(p, r)`; `true` if it did.
+/// A geodesic estimate is never below the chord, so the Euclidean test comes first for both
+/// criteria.
+pub fn accept(
     atlas: &Atlas,
     centre: &Centre,
-    pattern: &[DVec2],
-    psi: f64,
-    reach: &Reach,
+    candidate: Candidate,
     settings: &SamplerSettings,
     out: &mut Vec<Sample>,
-) -> SampleCounts {
-    let ellipse = unit_ellipse(centre, settings);
-    let turn = DMat2::from_angle(psi);
-    let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
-    let uniform = reach.is_uniform().then(|| reach.margin(0));
+) -> bool {
     let r = settings.radius;
-    let mut counts = SampleCounts::default();
-    for (pattern_index, &disk) in pattern.iter().enumerate() {
-        let w = turn * disk;
-        let margin = uniform.unwrap_or_else(|| reach.at(w.y.atan2(w.x)));
-        let target = centre.uv + ellipse * (margin * w);
-        let (point, m_path) = match reach_target(atlas, centre, target, settings) {
-            Reached::Surface { point, m_path } => (point, m_path),
-            Reached::Border => {
-                counts.border += 1;
-                continue;
-            }
-            Reached::Missing => {
-                counts.missing += 1;
-                continue;
-            }
-        };
-        let q = rounded(point.position, atlas.precision);
-        let offset = q - centre.position;
-        let distance = offset.length();
-        if distance <= 1e-6 * r {
-            continue;
-        }
-        let sin_alpha = centre.normal.dot(offset) / distance;
-        if !is_inside(distance, sin_alpha, settings) {
-            continue;
-        }
-        counts.valid += 1;
-        out.push(Sample {
-            position: q,
-            normal: rounded(point.normal, atlas.precision),
-            area: point.area_element * m_path.determinant().abs() * cell_area * margin * margin,
-            distance,
-            sin_alpha,
-            pattern_index: pattern_index as u32,
-        });
+    let q = rounded(candidate.point.position, atlas.precision);
+    let offset = q - centre.position;
+    let distance = offset.length();
+    if distance <= 1e-6 * r || distance >= r {
+        return false;
     }
-    counts
+    let sin_alpha = centre.normal.dot(offset) / distance;
+    let geodesic = match (settings.geodesic, candidate.own_chart_uv) {
+        (Geodesic::ChordSum, Some(uv)) => chord_sum_distance(atlas, centre, uv, settings.lookup),
+        _ => None,
+    }
+    .unwrap_or_else(|| arc_distance(distance, sin_alpha));
+    if settings.criterion == Criterion::Geodesic && geodesic >= r {
+        return false;
+    }
+    out.push(Sample {
+        position: q,
+        normal: rounded(candidate.point.normal, atlas.precision),
+        area: candidate.point.area_element * candidate.uv_area,
+        distance,
+        sin_alpha,
+        geodesic,
+        pattern_index: candidate.pattern_index,
+    });
+    true
 }

@@ -3,7 +3,7 @@
 
 use super::coverage::gather_covering;
 use super::neighbourhood::{centre_at, Sample};
-use super::pattern::{disk_pattern, pixel_angle};
+use super::pattern::{disk_pattern, Placement};
 use crate::atlas::Atlas;
 use crate::output::ComputeSettings;
 use glam::DVec2;
@@ -45,10 +45,10 @@ pub fn neighbourhood_tile(
         .filter_map(|t| {
             let (i, j) = (t % w, t / w);
             let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-            let centre = centre_at(atlas, uv)?;
+            let centre = centre_at(atlas, uv, settings.lookup)?;
             let mut samples = Vec::with_capacity(n);
-            let psi = pixel_angle(i as u32, j as u32, settings.seed);
-            gather_covering(atlas, &centre, &pattern, psi, &sampler, settings.grow_margin, &mut samples);
+            let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
+            gather_covering(atlas, &centre, &pattern, placement, &sampler, settings.grow_margin, &mut samples);
             Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
         })
         .collect();

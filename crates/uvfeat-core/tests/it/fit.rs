@@ -5,6 +5,7 @@
 use crate::support::{atlas, median};
 use glam::{DMat3, DQuat, DVec2, DVec3};
 use uvfeat_core::features::{CurvatureMethod, Feature};
+use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::{per_vertex_directions, ComputeSettings, FeatureMaps};
 use uvfeat_core::sampling::centre_at;
 use uvfeat_core::shapes::{cylinder, ellipsoid, torus, uv_sphere, ShapeMesh};
@@ -55,7 +56,7 @@ fn direction_errors(
 ) -> (f64, f64, usize) {
     let mut errors = (Vec::new(), Vec::new());
     for t in (0..maps.chart.len()).filter(|&t| maps.n_valid[t] > 0 && keep(t)) {
-        let Some(centre) = centre_at(atlas, texel_uv(maps, t)) else {
+        let Some(centre) = centre_at(atlas, texel_uv(maps, t), Lookup::Triangle) else {
             continue;
         };
         let (d1, d2, k1, k2) = truth(centre.position);

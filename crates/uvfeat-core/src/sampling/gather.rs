@@ -1,0 +1,116 @@
+//! Gathering a neighbourhood sample by sample (SPEC §1.4, `relocation = per_sample`): each pattern
+//! point is mapped onto the centre's sampling domain, relocated across seams on its own, looked
+//! up, and kept when it lies in the ball.
+
+use super::neighbourhood::{
+    accept, is_inside, unit_ellipse, unit_ellipse_area, Candidate, Centre, Sample, SampleCounts, SamplerSettings,
+};
+use super::pattern::Placement;
+use super::per_chart::gather_per_chart;
+use super::reach::Reach;
+use crate::atlas::Atlas;
+use crate::lookup::SurfacePoint;
+use crate::relocation::{locate_with, Located, Relocation};
+use glam::{DMat2, DVec2};
+
+/// Where a parametric `target` reached from the centre lies on the surface.
+enum Reached {
+    Surface { point: SurfacePoint, m_path: DMat2, own_chart_uv: Option<DVec2> },
+    Border,
+    Missing,
+}
+
+fn reach_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Reached {
+    let located = locate_with(
+        atlas,
+        settings.relocation,
+        centre.uv,
+        Some(&centre.home),
+        centre.chart,
+        target,
+        settings.max_jumps,
+    );
+    let (chart, uv, m_path, face, jumps) = match located {
+        Located::Inside { chart, uv, m_path, face, jumps } => (chart, uv, m_path, face, jumps),
+        Located::Border => return Reached::Border,
+        Located::Missing => return Reached::Missing,
+    };
+    match settings.lookup.evaluate(atlas, face, uv, chart) {
+        Some(point) => {
+            Reached::Surface { point, m_path, own_chart_uv: (jumps == 0 && chart == centre.chart).then_some(uv) }
+        }
+        None => Reached::Missing,
+    }
+}
+
+/// Distance `|q - p|` of the surface point `q` reached at `target` when it lies in the ball
+/// `S(p, r)`; `None` outside it or off the surface (a mesh border or a failed relocation ends the
+/// neighbourhood there too).
+pub fn distance_inside(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Option<f64> {
+    let Reached::Surface { point, .. } = reach_target(atlas, centre, target, settings) else {
+        return None;
+    };
+    let offset = point.position - centre.position;
+    let distance = offset.length();
+    is_inside(distance, centre.normal.dot(offset) / distance.max(f64::MIN_POSITIVE), settings).then_some(distance)
+}
+
+/// Samples the neighbourhood of `centre` with `pattern` (unit-disk points) placed by `placement` and
+/// stretched per direction by `reach`. Each sample stands for `m(phi)^2 A_uv / N` of parametric
+/// area (see [`Reach`]). Accepted samples are appended to `out` (no allocation once it has grown).
+/// With `relocation = per_chart` the paper's per-chart repetition samples instead.
+pub fn gather(
+    atlas: &Atlas,
+    centre: &Centre,
+    pattern: &[DVec2],
+    placement: Placement,
+    reach: &Reach,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+) -> SampleCounts {
+    if settings.relocation == Relocation::PerChart {
+        return gather_per_chart(atlas, centre, pattern, placement, reach, settings, out);
+    }
+    let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
+    let mut counts = SampleCounts::default();
+    for (pattern_index, offset) in offsets(centre, pattern, placement, reach, settings).enumerate() {
+        let (point, m_path, own_chart_uv) = match reach_target(atlas, centre, centre.uv + offset.uv, settings) {
+            Reached::Surface { point, m_path, own_chart_uv } => (point, m_path, own_chart_uv),
+            Reached::Border => {
+                counts.border += 1;
+                continue;
+            }
+            Reached::Missing => {
+                counts.missing += 1;
+                continue;
+            }
+        };
+        let uv_area = m_path.determinant().abs() * cell_area * offset.area_scale;
+        let candidate = Candidate { point, uv_area, own_chart_uv, pattern_index: pattern_index as u32 };
+        counts.valid += u32::from(accept(atlas, centre, candidate, settings, out));
+    }
+    counts
+}
+
+/// A pattern point's parametric offset from the centre and the factor `m(phi)^2` of its area.
+pub(super) struct Offset {
+    pub uv: DVec2,
+    pub area_scale: f64,
+}
+
+/// The offsets of `pattern` placed by `placement`, stretched by `reach`, on the centre's ellipse.
+pub(super) fn offsets<'a>(
+    centre: &Centre,
+    pattern: &'a [DVec2],
+    placement: Placement,
+    reach: &'a Reach,
+    settings: &SamplerSettings,
+) -> impl Iterator<Item = Offset> + 'a {
+    let ellipse = unit_ellipse(centre, settings);
+    let uniform = reach.is_uniform().then(|| reach.margin(0));
+    pattern.iter().map(move |&disk| {
+        let w = placement.place(disk);
+        let margin = uniform.unwrap_or_else(|| reach.at(w.y.atan2(w.x)));
+        Offset { uv: ellipse * (margin * w), area_scale: margin * margin }
+    })
+}
