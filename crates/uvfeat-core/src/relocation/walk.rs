@@ -149,10 +149,10 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
 }
 
 /// Chart distance (texels) from which a skip is worth a texel lookup and a short walk.
-const MIN_SKIP: f64 = 4.0;
+const MIN_SKIP: f64 = 3.0;
 
 /// Faces walked between two attempts to skip ahead.
-const SKIP_EVERY: usize = 8;
+const SKIP_EVERY: usize = 4;
 
 /// Locates `target` by walking from `home`, crossing at most `max_jumps` seams.
 pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Located {
