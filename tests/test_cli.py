@@ -21,6 +21,8 @@ def test_demo_runs_on_the_built_in_mesh(tmp_path):
     assert main(["demo", "--resolution", "256", "--out", str(tmp_path)]) == 0
     summary = json.loads((tmp_path / "atlas" / "summary.json").read_text())
     assert summary["diagnostics"]["charts"] == 13
+    features = json.loads((tmp_path / "features" / "summary.json").read_text())
+    assert features["settings"]["compute_resolution"] == 256 and list(features["radii"]) == ["1%", "4%", "16%"]
 
 
 def test_errors_exit_with_status_2_and_a_message(tmp_path, capsys):

@@ -331,7 +331,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     demo = commands.add_parser("demo", help="run on the built-in Spot mesh: atlas pictures and features at 3 radii")
     _add_atlas_options(demo)
-    demo.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
+    # 256² texels are ~11 per triangle of the 5,856-triangle Spot: the pictures stay sharp and the
+    # three radii take ~20 s on 2 cores instead of ~80 s at 512² (16 % dominates).
+    demo.add_argument("--compute-resolution", type=int, default=256,
+                      help="computation texture size (default 256, enough for the 5,856-triangle Spot)")
     demo.set_defaults(handler=_cmd_demo)
     return parser
 
