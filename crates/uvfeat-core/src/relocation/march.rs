@@ -13,7 +13,6 @@ use glam::{DMat2, DVec2};
 /// of the seam edge, which the transition map carries exactly onto the other side) rather than
 /// from the image of the last texel inside, which can fall just outside the new chart.
 pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: u32) -> Located {
-    let resolution = atlas.resolution() as f64;
     let (mut origin, mut target, mut chart) = (start, target, chart);
     let mut m_path = DMat2::IDENTITY;
     let mut jumps = 0;
@@ -21,13 +20,9 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
         if atlas.chart_at(target) == chart {
             return Located::Inside { chart, uv: target, m_path, jumps, face: None };
         }
-        let offset = target - origin;
-        let steps = (offset.abs().max_element() * resolution).ceil().max(1.0);
-        let step = offset / steps;
-        let Some(exit) = first_exit(atlas, origin, step, steps as usize, chart) else {
+        let Some(last_inside) = last_inside(atlas, origin, target, chart) else {
             return Located::Inside { chart, uv: target, m_path, jumps, face: None };
         };
-        let last_inside = origin + step * (exit - 1) as f64;
         let Some(texel) = border_texel(atlas, last_inside, chart) else {
             return Located::Missing;
         };
@@ -49,9 +44,19 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
     }
 }
 
+/// The last point of the march from `origin` towards `target` in one-texel steps that is still
+/// in `chart`, before the first step outside it (SPEC §1.5); `None` when no step leaves it.
+pub fn last_inside(atlas: &Atlas, origin: DVec2, target: DVec2, chart: i32) -> Option<DVec2> {
+    let offset = target - origin;
+    let steps = (offset.abs().max_element() * atlas.resolution() as f64).ceil().max(1.0);
+    let step = offset / steps;
+    let exit = first_exit(atlas, origin, step, steps as usize, chart)?;
+    Some(origin + step * (exit - 1) as f64)
+}
+
 /// First `k` in `1..=steps` with `origin + k step` outside `chart` (SPEC §1.5 march), skipping
 /// ahead by the chart distance of the current texel: the points skipped are provably inside.
-pub fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
+fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
     let coverage = &atlas.coverage;
     let mut k = 0;
     loop {

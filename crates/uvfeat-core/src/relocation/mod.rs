@@ -8,7 +8,7 @@
 mod march;
 mod walk;
 
-pub use march::{border_texel, cross_seam, first_exit, march, Crossing};
+pub use march::{border_texel, cross_seam, last_inside, march, Crossing};
 pub use walk::{home, walk, Home};
 
 use crate::atlas::Atlas;

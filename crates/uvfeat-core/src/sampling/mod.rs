@@ -11,15 +11,11 @@ mod reach;
 mod tile;
 
 pub use coverage::{gather_covering, MAX_MARGIN};
-pub use gather::{distance_inside, gather};
-pub use geodesic::{arc_distance, chord_sum_distance, Geodesic, CHORD_SEGMENTS};
-pub use neighbourhood::{
-    accept, centre_at, is_inside, unit_ellipse, unit_ellipse_area, Candidate, Centre, Criterion, Sample, SampleCounts,
-    SamplerSettings,
-};
+pub use gather::gather;
+pub use geodesic::{arc_distance, Geodesic, CHORD_SEGMENTS};
+pub use neighbourhood::{centre_at, Centre, Criterion, Sample, SampleCounts, SamplerSettings};
 pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,
 };
-pub use per_chart::gather_per_chart;
-pub use reach::{Reach, DIRECTIONS};
+pub use reach::Reach;
 pub use tile::{neighbourhood_tile, NeighbourhoodTile};

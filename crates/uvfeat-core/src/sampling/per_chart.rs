@@ -14,7 +14,7 @@ use super::neighbourhood::{accept, unit_ellipse_area, Candidate, Centre, Sample,
 use super::pattern::Placement;
 use super::reach::Reach;
 use crate::atlas::Atlas;
-use crate::relocation::{border_texel, first_exit};
+use crate::relocation::{border_texel, last_inside};
 use glam::DVec2;
 
 /// Charts one neighbourhood may repeat its pattern in; samples leading to further charts are
@@ -91,11 +91,8 @@ pub fn gather_per_chart(
 /// The border texel where the march from the centre towards `target` first leaves the chart
 /// (SPEC §1.5's march, stopped at its first crossing).
 fn exit_texel(atlas: &Atlas, centre: &Centre, target: DVec2) -> Option<usize> {
-    let offset = target - centre.uv;
-    let steps = (offset.abs().max_element() * atlas.resolution() as f64).ceil().max(1.0);
-    let step = offset / steps;
-    let exit = first_exit(atlas, centre.uv, step, steps as usize, centre.chart).unwrap_or(steps as usize);
-    let texel = border_texel(atlas, centre.uv + step * (exit - 1) as f64, centre.chart)?;
+    let last_inside = last_inside(atlas, centre.uv, target, centre.chart).unwrap_or(target);
+    let texel = border_texel(atlas, last_inside, centre.chart)?;
     (atlas.coverage.border_side[texel] >= 0).then_some(texel)
 }
 

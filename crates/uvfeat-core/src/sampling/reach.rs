@@ -58,11 +58,6 @@ impl Reach {
     pub fn is_uniform(&self) -> bool {
         self.margins.iter().all(|&m| m == self.margins[0])
     }
-
-    /// Largest margin of any direction.
-    pub fn largest(&self) -> f64 {
-        self.margins.iter().copied().fold(0.0, f64::max)
-    }
 }
 
 #[cfg(test)]
