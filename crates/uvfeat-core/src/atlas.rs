@@ -4,7 +4,7 @@
 use crate::error::{Result, UvfeatError};
 use crate::frame::Frame;
 use crate::mesh::Topology;
-use crate::raster::{Coverage, GeometryBuffers, Precision};
+use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -39,6 +39,8 @@ pub struct Atlas {
     pub frame: Frame,
     /// Per-frame geometry buffers.
     pub buffers: GeometryBuffers,
+    /// Per-frame compact surface patches of the faces (the sampler's fast path).
+    pub patches: FacePatches,
     /// Storage precision of positions and normals.
     pub precision: Precision,
 }
@@ -54,10 +56,11 @@ impl Atlas {
         let frame = Frame::new(&topology, positions)?;
         let coverage = Coverage::build(&topology, options.resolution);
         let buffers = GeometryBuffers::evaluate(&topology, &coverage, &frame, options.precision);
-        Ok(Self { topology, coverage, frame, buffers, precision: options.precision })
+        let patches = FacePatches::new(&topology, &frame);
+        Ok(Self { topology, coverage, frame, buffers, patches, precision: options.precision })
     }
 
-    /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, buffers) for new
+    /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, buffers, patches) for new
     /// positions; charts, coverage, border texels and edge tables are reused.
     ///
     /// # Errors
@@ -65,6 +68,7 @@ impl Atlas {
     pub fn update(&mut self, positions: &[DVec3]) -> Result<()> {
         self.frame.refresh(&self.topology, positions)?;
         self.buffers.refresh(&self.topology, &self.coverage, &self.frame, self.precision);
+        self.patches.refresh(&self.topology, &self.frame);
         Ok(())
     }
 

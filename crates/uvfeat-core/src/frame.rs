@@ -89,6 +89,16 @@ impl FaceMap {
         [1.0 - b.x - b.y, b.x, b.y]
     }
 
+    /// Corner positions and unit vertex normals.
+    pub(crate) fn corners(&self) -> &[(DVec3, DVec3); 3] {
+        &self.corners
+    }
+
+    /// Inverse of `[U1 - U0, U2 - U0]`: uv offset -> barycentrics of corners 1 and 2.
+    pub(crate) fn to_barycentric(&self) -> DMat2 {
+        self.to_barycentric
+    }
+
     /// Unit normal at `uv` (interpolated vertex normals, renormalised).
     #[inline]
     pub fn normal(&self, uv: DVec2) -> DVec3 {

@@ -10,6 +10,10 @@ use crate::sampling::Placement;
 use glam::DVec2;
 use rayon::prelude::*;
 
+/// Side of the square tiles of texels evaluated together, so that their neighbourhoods' reads of
+/// the buffers stay in cache.
+const TILE: usize = 16;
+
 /// Totals over a map, for reports.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MapSummary {
@@ -67,14 +71,30 @@ impl FeatureMaps {
         settings.validate()?;
         let w = settings.resolution;
         let patterns = Patterns::new(settings);
+        let tiles_per_side = w.div_ceil(TILE);
+        let tiles: Vec<Vec<PixelResult>> = (0..tiles_per_side * tiles_per_side)
+            .into_par_iter()
+            .map_init(Vec::new, |scratch, tile| {
+                let (ti, tj) = (tile % tiles_per_side * TILE, tile / tiles_per_side * TILE);
+                let mut out = Vec::with_capacity(TILE * TILE);
+                for j in tj..(tj + TILE).min(w) {
+                    for i in ti..(ti + TILE).min(w) {
+                        let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
+                        let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
+                        out.push(evaluate_point(atlas, uv, placement, settings, &patterns, scratch));
+                    }
+                }
+                out
+            })
+            .collect();
         let mut pixels = vec![PixelResult::EMPTY; w * w];
-        pixels.par_chunks_mut(w).enumerate().for_each_init(Vec::new, |scratch, (j, row)| {
-            for (i, pixel) in row.iter_mut().enumerate() {
-                let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-                let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
-                *pixel = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
+        for (tile, results) in tiles.into_iter().enumerate() {
+            let (ti, tj) = (tile % tiles_per_side * TILE, tile / tiles_per_side * TILE);
+            let width = (ti + TILE).min(w) - ti;
+            for (k, result) in results.into_iter().enumerate() {
+                pixels[(tj + k / width) * w + ti + k % width] = result;
             }
-        });
+        }
         let chart = (0..w * w)
             .map(|t| atlas.chart_at(DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64)))
             .collect();

@@ -5,7 +5,7 @@ use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, SamplerSettings};
+use crate::sampling::{Criterion, Geodesic, SamplerSettings, SamplingPath};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,6 +33,8 @@ pub struct ComputeSettings {
     pub lookup: Lookup,
     /// Geodesic distance estimate of the geodesic-area K and criterion (arc; chord sum = paper).
     pub geodesic: Geodesic,
+    /// Fast path for interior samples (default) or the exact path everywhere (its reference).
+    pub sampling: SamplingPath,
     /// Seed of the pattern and the per-pixel rotations (0).
     pub seed: u64,
     /// Two-stage adaptive sampling (off).
@@ -68,6 +70,7 @@ impl ComputeSettings {
             criterion: Criterion::Euclidean,
             lookup: Lookup::Triangle,
             geodesic: Geodesic::Arc,
+            sampling: SamplingPath::Fast,
             seed: 0,
             adaptive: false,
             tau: 0.01,
@@ -123,6 +126,9 @@ impl ComputeSettings {
             criterion: self.criterion,
             lookup: self.lookup,
             geodesic: self.geodesic,
+            path: self.sampling,
+            with_normals: self.features.contains(&Feature::BendingEnergy),
+            with_geodesic: self.criterion == Criterion::Geodesic || self.gaussian_method == GaussianMethod::GeodesicArea,
         }
     }
 

@@ -43,6 +43,11 @@ pub struct Coverage {
     /// closer than `distance - 1` shares this texel's chart and no boundary crosses it, so a march
     /// or a walk may jump that far at once (the relocation's speed-up at large radii).
     pub chart_distance: Vec<u8>,
+    /// The face of each texel deep enough in its chart that a parametric point in it is reached
+    /// from anywhere in the chart's texels around it without crossing a boundary (chart distance
+    /// at least 2, not a border texel: [`crate::relocation::well_inside`]); `u32::MAX` elsewhere.
+    /// The sampler's fast path reads a sample's face from it with one load.
+    pub interior_face: Vec<u32>,
     /// Counts for reports.
     pub diagnostics: CoverageDiagnostics,
 }
@@ -58,11 +63,18 @@ impl Coverage {
             chart: vec![-1; n],
             border_side: vec![-1; n],
             chart_distance: Vec::new(),
+            interior_face: Vec::new(),
             diagnostics: CoverageDiagnostics::default(),
         };
         coverage.rasterise_triangles(topology);
         coverage.rasterise_boundaries(topology);
         coverage.chart_distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
+        coverage.interior_face = (0..n)
+            .map(|t| {
+                let interior = coverage.chart_distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
+                u32::try_from(coverage.face[t]).ok().filter(|_| interior).unwrap_or(u32::MAX)
+            })
+            .collect();
         coverage
     }
 
@@ -139,8 +151,11 @@ impl Coverage {
     }
 
     /// Approximate bytes per texel of coverage plus one frame of buffers, for memory checks.
-    pub const BYTES_PER_TEXEL: u64 = 21 + 36 + 24;
+    pub const BYTES_PER_TEXEL: u64 = 25 + 36 + 24;
 }
+
+/// Chart distance from which a texel is interior (see [`Coverage::interior_face`]).
+pub const INTERIOR_DISTANCE: u8 = 2;
 
 /// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation) from
 /// the border texels and the texels next to another chart.

@@ -3,8 +3,10 @@
 mod boundary;
 mod buffers;
 mod coverage;
+mod patches;
 mod triangles;
 
 pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
 pub use coverage::{Coverage, CoverageDiagnostics};
+pub use patches::{FacePatch, FacePatches, PatchWords};

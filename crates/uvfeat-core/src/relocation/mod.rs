@@ -51,9 +51,7 @@ pub enum Relocation {
 #[inline]
 pub fn well_inside(atlas: &Atlas, target: DVec2, chart: i32) -> bool {
     let coverage = &atlas.coverage;
-    atlas
-        .texel_at(target)
-        .is_some_and(|t| coverage.chart[t] == chart && coverage.chart_distance[t] >= 2 && coverage.border_side[t] < 0)
+    atlas.texel_at(target).is_some_and(|t| coverage.chart[t] == chart && coverage.interior_face[t] != u32::MAX)
 }
 
 /// Locates `target`, an offset of `start` in `chart`, with `method` (SPEC §1.5 `locate`).

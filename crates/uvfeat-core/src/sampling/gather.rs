@@ -5,6 +5,7 @@
 use super::neighbourhood::{
     accept, is_inside, unit_ellipse, unit_ellipse_area, Candidate, Centre, Sample, SampleCounts, SamplerSettings,
 };
+use super::fast_path;
 use super::pattern::Placement;
 use super::per_chart::gather_per_chart;
 use super::reach::Reach;
@@ -71,25 +72,40 @@ pub fn gather(
     if settings.relocation == Relocation::PerChart {
         return gather_per_chart(atlas, centre, pattern, placement, reach, settings, out);
     }
+    if fast_path::applies(atlas, settings) {
+        return fast_path::gather(atlas, centre, pattern, placement, reach, settings, out);
+    }
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let mut counts = SampleCounts::default();
     for (pattern_index, offset) in offsets(centre, pattern, placement, reach, settings).enumerate() {
-        let (point, m_path, own_chart_uv) = match reach_target(atlas, centre, centre.uv + offset.uv, settings) {
-            Reached::Surface { point, m_path, own_chart_uv } => (point, m_path, own_chart_uv),
-            Reached::Border => {
-                counts.border += 1;
-                continue;
-            }
-            Reached::Missing => {
-                counts.missing += 1;
-                continue;
-            }
-        };
-        let uv_area = m_path.determinant().abs() * cell_area * offset.area_scale;
-        let candidate = Candidate { point, uv_area, own_chart_uv, pattern_index: pattern_index as u32 };
-        counts.valid += u32::from(accept(atlas, centre, candidate, settings, out));
+        let uv_area = cell_area * offset.area_scale;
+        exact_sample(atlas, centre, centre.uv + offset.uv, uv_area, pattern_index as u32, settings, out, &mut counts);
     }
     counts
+}
+
+/// Relocates, looks up and tests one pattern point at parametric `target`, whose cell stands for
+/// `uv_area` of the centre's chart, and counts what happened to it.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn exact_sample(
+    atlas: &Atlas,
+    centre: &Centre,
+    target: DVec2,
+    uv_area: f64,
+    pattern_index: u32,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+    counts: &mut SampleCounts,
+) {
+    match reach_target(atlas, centre, target, settings) {
+        Reached::Surface { point, m_path, own_chart_uv } => {
+            let uv_area = m_path.determinant().abs() * uv_area;
+            let candidate = Candidate { point, uv_area, own_chart_uv, pattern_index };
+            counts.valid += u32::from(accept(atlas, centre, candidate, settings, out));
+        }
+        Reached::Border => counts.border += 1,
+        Reached::Missing => counts.missing += 1,
+    }
 }
 
 /// A pattern point's parametric offset from the centre and the factor `m(phi)^2` of its area.

@@ -2,6 +2,7 @@
 //! point in parametric space.
 
 mod coverage;
+mod fast_path;
 mod gather;
 mod geodesic;
 mod neighbourhood;
@@ -11,6 +12,7 @@ mod reach;
 mod tile;
 
 pub use coverage::{gather_covering, MAX_MARGIN};
+pub use fast_path::SamplingPath;
 pub use gather::gather;
 pub use geodesic::{arc_distance, Geodesic, CHORD_SEGMENTS};
 pub use neighbourhood::{centre_at, Centre, Criterion, Sample, SampleCounts, SamplerSettings};

@@ -3,6 +3,7 @@
 //! of radius `r`, weighted by the surface area it represents (the gathering itself is in
 //! `gather.rs` and `per_chart.rs`).
 
+use super::fast_path::SamplingPath;
 use super::geodesic::{arc_distance, chord_sum_distance, Geodesic};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
@@ -39,6 +40,14 @@ pub struct SamplerSettings {
     pub lookup: Lookup,
     /// Geodesic distance estimate the samples carry.
     pub geodesic: Geodesic,
+    /// Fast path for interior samples, or the exact path everywhere.
+    pub path: SamplingPath,
+    /// The samples' normals are used (bending energy, user operators); the fast path leaves them
+    /// NaN otherwise.
+    pub with_normals: bool,
+    /// The samples' geodesic distances are used (geodesic criterion or geodesic-area K); the fast
+    /// path leaves them NaN otherwise.
+    pub with_geodesic: bool,
 }
 
 /// The centre `p = P(s)` of a neighbourhood.

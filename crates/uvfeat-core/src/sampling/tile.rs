@@ -2,7 +2,7 @@
 //! operators `F(p, S(p))` (SPEC §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
 use super::coverage::gather_covering;
-use super::neighbourhood::{centre_at, Sample};
+use super::neighbourhood::{centre_at, Sample, SamplerSettings};
 use super::pattern::{disk_pattern, Placement};
 use crate::atlas::Atlas;
 use crate::output::ComputeSettings;
@@ -39,7 +39,7 @@ pub fn neighbourhood_tile(
     let w = settings.resolution;
     let n = settings.samples;
     let pattern = disk_pattern(n, settings.seed, 0);
-    let sampler = settings.sampler();
+    let sampler = SamplerSettings { with_normals: true, ..settings.sampler() };
     let per_texel: Vec<(u32, [f64; 3], [f64; 3], Vec<Sample>)> = texels
         .into_par_iter()
         .filter_map(|t| {
