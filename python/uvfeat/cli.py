@@ -119,12 +119,13 @@ def _write_features(mesh, args, console, load_notes: list[str], started: float) 
     if args.directions and args.method != "fit":
         raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
     os.makedirs(args.out, exist_ok=True)
-    options = {"query": args.query, "standard_error": args.standard_error, "method": args.method}
+    options = {"query": args.query, "standard_error": args.standard_error, "method": args.method,
+               "sampling": args.sampling}
     summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
                "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,
                             "compute_resolution": args.compute_resolution, "adaptive": args.adaptive,
                             "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query,
-                            "method": args.method}}
+                            "method": args.method, "sampling": args.sampling}}
     with _steps(console, 1 + 3 * len(radii)) as advance:
         advance("pre-processing + rasterising", done=False)
         atlas = Atlas(mesh, resolution=args.resolution, precision="f16" if args.paper_mode else "f32")
@@ -195,7 +196,7 @@ def _write_comparison(mesh, args, console, load_notes: list[str], started: float
             warnings.simplefilter("always")
             result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
                              compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
-                             seed=args.seed, query=args.query, method=args.method)
+                             seed=args.seed, query=args.query, method=args.method, sampling=args.sampling)
         advance("pictures")
         summary = result.to_dict()
         summary["warnings"] = load_notes + sorted({str(w.message) for w in caught})
@@ -242,6 +243,7 @@ def _cmd_demo(args) -> int:
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.compute_resolution, args.adaptive, args.paper_mode = 256, args.compute_resolution, False, False
     args.seed, args.query, args.standard_error, args.method, args.directions = 0, "texture", False, "integral", None
+    args.sampling = "fast"
     _write_features(mesh, args, console, [], time.perf_counter())
     return 0
 
@@ -263,6 +265,8 @@ def _add_feature_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--method", choices=("integral", "fit"), default="integral",
                         help="curvature estimators: integral invariants or the osculating-circle fit (adds principal "
                         "directions)")
+    parser.add_argument("--sampling", choices=("fast", "exact"), default="fast",
+                        help="sampler: the fast path (default) or the exact path it is checked against")
 
 
 def _add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:

@@ -67,9 +67,9 @@ class Comparison:
 
 def compare(mesh: Mesh, features, radius, *, samples: int = 256, resolution: int = 1024, compute_resolution: int = 512,
             gaussian_method: str = "moments", seed: int = 0, query: str = "texture",
-            method: str = "integral") -> Comparison:
+            method: str = "integral", sampling: str = "fast") -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
-    ``"integral"`` or ``"fit"``) and the object-space reference on ``mesh`` for ``features`` at
+    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"fast"`` or ``"exact"``) and the object-space reference on ``mesh`` for ``features`` at
     ``radius`` (object units or ``"2%"``) and measures both."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
@@ -88,7 +88,8 @@ def compare(mesh: Mesh, features, radius, *, samples: int = 256, resolution: int
     atlas.update(mesh.positions)
     buffers_s = time.perf_counter() - started
     maps = atlas.compute(names, radius, samples=samples, compute_resolution=compute_resolution, seed=seed,
-                         gaussian_method=PARAMETRIC_GAUSSIAN[gaussian_method], query=query, method=method)
+                         gaussian_method=PARAMETRIC_GAUSSIAN[gaussian_method], query=query, method=method,
+                         sampling=sampling)
     features_s = time.perf_counter() - started - buffers_s
     values = {name: m.per_vertex() for name, m in maps.items()}
     parametric_s = time.perf_counter() - started

@@ -31,6 +31,7 @@ DEFAULT_OPTIONS = {
     "criterion": "euclidean",
     "lookup": "triangle",
     "geodesic": "arc",
+    "sampling": "fast",
     "gaussian_method": "moments",
     "method": "integral",
     "volume_weighting": "distance",

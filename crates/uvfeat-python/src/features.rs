@@ -11,7 +11,7 @@ use uvfeat_core::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeig
 use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::{per_vertex, per_vertex_directions, ComputeSettings, FeatureMaps, VertexQuery};
 use uvfeat_core::relocation::Relocation;
-use uvfeat_core::sampling::{neighbourhood_tile, Criterion, Geodesic};
+use uvfeat_core::sampling::{neighbourhood_tile, Criterion, Geodesic, SamplingPath};
 use uvfeat_core::UvfeatError;
 
 pub(crate) fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
@@ -80,6 +80,8 @@ pub fn compute_settings(
     )?;
     s.lookup = choice("lookup", &text("lookup")?, &[("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)])?;
     s.geodesic = choice("geodesic", &text("geodesic")?, &[("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)])?;
+    s.sampling =
+        choice("sampling", &text("sampling")?, &[("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)])?;
     s.gaussian_method = choice(
         "gaussian_method",
         &text("gaussian_method")?,

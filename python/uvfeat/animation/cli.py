@@ -64,7 +64,7 @@ def run(args) -> int:
         frames = animate(args.mesh, args.feature, args.radius, frames=_frames_argument(args.frames), fps=args.fps,
                          animation=args.animation, resolution=args.resolution, uv=args.uv, samples=args.samples,
                          compute_resolution=args.compute_resolution, seed=args.seed,
-                         method=args.method)
+                         method=args.method, sampling=args.sampling)
     notes = sorted({str(w.message) for w in caught}) + frames.atlas.warnings()
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
     os.makedirs(args.out, exist_ok=True)
@@ -93,7 +93,7 @@ def run(args) -> int:
         "uvfeat": __version__, "mesh": frames.mesh.name, "animation": frames.animation_name, "frames": total,
         "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": args.samples,
                      "resolution": args.resolution, "compute_resolution": args.compute_resolution, "seed": args.seed,
-                     "method": args.method},
+                     "method": args.method, "sampling": args.sampling},
         "colour_ranges": ranges, "warnings": notes, "diagnostics": frames.atlas.diagnostics,
         "timings": {"once_s": frames.atlas.timings, "mean_per_frame_ms": mean_ms, "per_frame": per_frame,
                     "total_s": time.perf_counter() - started},

@@ -128,7 +128,8 @@ impl ComputeSettings {
             geodesic: self.geodesic,
             path: self.sampling,
             with_normals: self.features.contains(&Feature::BendingEnergy),
-            with_geodesic: self.criterion == Criterion::Geodesic || self.gaussian_method == GaussianMethod::GeodesicArea,
+            with_geodesic: self.criterion == Criterion::Geodesic
+                || self.gaussian_method == GaussianMethod::GeodesicArea,
         }
     }
 

@@ -2,10 +2,10 @@
 //! point is mapped onto the centre's sampling domain, relocated across seams on its own, looked
 //! up, and kept when it lies in the ball.
 
+use super::fast_path;
 use super::neighbourhood::{
     accept, is_inside, unit_ellipse, unit_ellipse_area, Candidate, Centre, Sample, SampleCounts, SamplerSettings,
 };
-use super::fast_path;
 use super::pattern::Placement;
 use super::per_chart::gather_per_chart;
 use super::reach::Reach;

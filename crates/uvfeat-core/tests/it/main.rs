@@ -3,6 +3,7 @@
 mod support;
 
 mod errors;
+mod fast_path;
 mod features;
 mod fit;
 mod geodesics;

@@ -1,0 +1,81 @@
+//! The sampler's fast path against its reference, the exact path, with the same seeds: the same
+//! samples reach the same faces, so the maps agree up to f32 rounding (which can move a sample
+//! lying on the sphere of radius r in or out of the ball: one sample in ~160 changes a texel's H
+//! by up to ~2 %, so a few texels in 10^4 differ by that much).
+
+use crate::support::{atlas, median};
+use glam::DVec2;
+use uvfeat_core::features::Feature;
+use uvfeat_core::output::{ComputeSettings, FeatureMaps};
+use uvfeat_core::sampling::SamplingPath;
+use uvfeat_core::shapes::{torus, uv_sphere, ShapeMesh};
+use uvfeat_core::Atlas;
+
+const FEATURES: [Feature; 4] =
+    [Feature::MeanCurvature, Feature::GaussianCurvature, Feature::BendingEnergy, Feature::K1];
+
+fn maps(atlas: &Atlas, radius: f64, path: SamplingPath) -> FeatureMaps {
+    let mut settings = ComputeSettings::new(FEATURES.to_vec(), radius);
+    settings.resolution = 128;
+    settings.sampling = path;
+    FeatureMaps::compute(atlas, &settings).expect("valid settings")
+}
+
+/// The lat-long sphere cut into `blocks` x `blocks` charts, each turned by a quarter turn per
+/// block (so every seam has a rotating transition map) and shrunk into its own slot of the atlas.
+fn patchwork_sphere(blocks: usize) -> ShapeMesh {
+    let mut mesh = uv_sphere(1.0, 96, 48);
+    let mut uvs = Vec::with_capacity(3 * mesh.faces.len());
+    for uv_face in mesh.uv_faces.iter_mut() {
+        let corners = uv_face.map(|k| DVec2::from_array(mesh.uvs[k as usize]));
+        let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+        let slot = (centroid * blocks as f64).floor().min(DVec2::splat(blocks as f64 - 1.0));
+        let turn = DVec2::from_angle(std::f64::consts::FRAC_PI_2 * ((slot.x + slot.y) as i32 % 4) as f64);
+        let base = uvs.len() as i64;
+        uvs.extend(corners.map(|c| {
+            let local = c * blocks as f64 - slot - DVec2::splat(0.5);
+            ((slot + DVec2::splat(0.5) + 0.8 * turn.rotate(local)) / blocks as f64).to_array()
+        }));
+        *uv_face = [base, base + 1, base + 2];
+    }
+    mesh.uvs = uvs;
+    mesh
+}
+
+/// Fast and exact maps of every feature agree texel by texel up to the rim flips.
+fn assert_paths_agree(name: &str, atlas: &Atlas, radius: f64) {
+    let (fast, exact) = (maps(atlas, radius, SamplingPath::Fast), maps(atlas, radius, SamplingPath::Exact));
+    assert_eq!(fast.chart, exact.chart);
+    let texels: Vec<usize> = (0..fast.chart.len()).filter(|&t| exact.n_valid[t] > 0).collect();
+    let valid = |m: &FeatureMaps| texels.iter().map(|&t| u64::from(m.n_valid[t])).sum::<u64>();
+    let (v_fast, v_exact) = (valid(&fast), valid(&exact));
+    assert!(v_fast.abs_diff(v_exact) * 10_000 <= v_exact, "{name}: {v_fast} vs {v_exact} samples");
+    for (k, feature) in FEATURES.iter().enumerate() {
+        let scale = median(texels.iter().map(|&t| f64::from(exact.values[k][t]).abs()).collect());
+        let diffs: Vec<f64> =
+            texels.iter().map(|&t| f64::from((fast.values[k][t] - exact.values[k][t]).abs()) / scale).collect();
+        let close = diffs.iter().filter(|&&d| d <= 1e-4).count() as f64 / diffs.len() as f64;
+        let worst = diffs.iter().cloned().fold(0.0, f64::max);
+        assert!(close >= 0.99, "{name} {feature:?}: only {:.2} % of texels agree to 1e-4", 100.0 * close);
+        assert!(worst < 0.1, "{name} {feature:?}: a texel differs by {worst} of the median");
+    }
+}
+
+#[test]
+fn the_fast_path_matches_the_exact_path_on_single_chart_shapes() {
+    assert_paths_agree("sphere", &atlas(&uv_sphere(1.0, 96, 48), 512), 0.3);
+    assert_paths_agree("torus", &atlas(&torus(2.0, 0.5, 96, 48), 512), 0.25);
+}
+
+#[test]
+fn the_fast_path_matches_the_exact_path_across_many_charts() {
+    let atlas = atlas(&patchwork_sphere(6), 512);
+    assert!(atlas.topology.n_charts >= 36, "{} charts", atlas.topology.n_charts);
+    assert_paths_agree("patchwork sphere", &atlas, 0.3);
+    // And it is right: H = K = 1 on the unit sphere, across the charts' seams.
+    let fast = maps(&atlas, 0.3, SamplingPath::Fast);
+    let texels = (0..fast.chart.len()).filter(|&t| fast.n_valid[t] > 0);
+    let h_error = median(texels.clone().map(|t| (f64::from(fast.values[0][t]) - 1.0).abs()).collect());
+    let k_error = median(texels.map(|t| (f64::from(fast.values[1][t]) - 1.0).abs()).collect());
+    assert!(h_error < 5e-3 && k_error < 2e-2, "median |H - 1| {h_error}, |K - 1| {k_error}");
+}
