@@ -95,7 +95,7 @@ impl FaceMap {
     }
 
     /// Inverse of `[U1 - U0, U2 - U0]`: uv offset -> barycentrics of corners 1 and 2.
-    pub(crate) fn to_barycentric(&self) -> DMat2 {
+    pub(crate) fn barycentric_map(&self) -> DMat2 {
         self.to_barycentric
     }
 

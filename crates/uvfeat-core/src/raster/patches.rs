@@ -53,7 +53,7 @@ impl FacePatch {
     fn new(map: &FaceMap, chart: i32, origin: DVec3) -> Self {
         let (pu, pv) = (map.jacobian.pu, map.jacobian.pv);
         // Barycentric weights b_i = g_i + h_i du + k_i dv.
-        let inverse = map.to_barycentric();
+        let inverse = map.barycentric_map();
         let (h1, k1) = (inverse.x_axis.x, inverse.y_axis.x);
         let (h2, k2) = (inverse.x_axis.y, inverse.y_axis.y);
         let weights = [(1.0, -h1 - h2, -k1 - k2), (0.0, h1, k1), (0.0, h2, k2)];
