@@ -38,11 +38,11 @@ pub struct Coverage {
     pub chart: Vec<i32>,
     /// Boundary side (index into `Topology::sides`) closest to a border texel; -1 = not a border texel.
     pub border_side: Vec<i32>,
-    /// Chebyshev distance (texels, capped at 255) to the nearest texel that a chart boundary
+    /// Chebyshev distance (texels, capped at 65535) to the nearest texel that a chart boundary
     /// touches or that borders another chart, the empty space or the domain edge: every texel
     /// closer than `distance - 1` shares this texel's chart and no boundary crosses it, so a march
     /// or a walk may jump that far at once (the relocation's speed-up at large radii).
-    pub chart_distance: Vec<u8>,
+    pub chart_distance: Vec<u16>,
     /// The face of each texel deep enough in its chart that a parametric point in it is reached
     /// from anywhere in the chart's texels around it without crossing a boundary (chart distance
     /// at least 2, not a border texel: [`crate::relocation::well_inside`]); `u32::MAX` elsewhere.
@@ -151,16 +151,16 @@ impl Coverage {
     }
 
     /// Approximate bytes per texel of coverage plus one frame of buffers, for memory checks.
-    pub const BYTES_PER_TEXEL: u64 = 25 + 36 + 24;
+    pub const BYTES_PER_TEXEL: u64 = 26 + 36 + 24;
 }
 
 /// Chart distance from which a texel is interior (see [`Coverage::interior_face`]).
-pub const INTERIOR_DISTANCE: u8 = 2;
+pub const INTERIOR_DISTANCE: u16 = 2;
 
 /// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation) from
 /// the border texels and the texels next to another chart.
-fn chart_distance(chart: &[i32], border_side: &[i32], r: usize) -> Vec<u8> {
-    let mut d = vec![u8::MAX; r * r];
+fn chart_distance(chart: &[i32], border_side: &[i32], r: usize) -> Vec<u16> {
+    let mut d = vec![u16::MAX; r * r];
     let neighbours = |i: usize, j: usize| {
         [(-1i64, -1i64), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)]
             .into_iter()
@@ -177,7 +177,7 @@ fn chart_distance(chart: &[i32], border_side: &[i32], r: usize) -> Vec<u8> {
             }
         }
     }
-    let relax = |d: &mut [u8], t: usize, from: usize| d[t] = d[t].min(d[from].saturating_add(1));
+    let relax = |d: &mut [u16], t: usize, from: usize| d[t] = d[t].min(d[from].saturating_add(1));
     for j in 0..r {
         for i in 0..r {
             let t = j * r + i;
