@@ -11,8 +11,20 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 /// Side of the square tiles of texels evaluated together, so that their neighbourhoods' reads of
-/// the buffers stay in cache.
+/// the buffers stay in cache (16 measured faster than 8 and as fast as 32).
 const TILE: usize = 16;
+
+/// Indices `j * w + i` of a `w`² texture, tile after tile of [`TILE`]² texels; the parallel
+/// evaluation splits this order into contiguous runs, so each thread works tile by tile.
+fn tiled_order(w: usize) -> Vec<usize> {
+    let tiles = w.div_ceil(TILE);
+    (0..tiles * tiles)
+        .flat_map(|tile| {
+            let (ti, tj) = (tile % tiles * TILE, tile / tiles * TILE);
+            (tj..(tj + TILE).min(w)).flat_map(move |j| (ti..(ti + TILE).min(w)).map(move |i| j * w + i))
+        })
+        .collect()
+}
 
 /// Totals over a map, for reports.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -71,29 +83,19 @@ impl FeatureMaps {
         settings.validate()?;
         let w = settings.resolution;
         let patterns = Patterns::new(settings);
-        let tiles_per_side = w.div_ceil(TILE);
-        let tiles: Vec<Vec<PixelResult>> = (0..tiles_per_side * tiles_per_side)
-            .into_par_iter()
-            .map_init(Vec::new, |scratch, tile| {
-                let (ti, tj) = (tile % tiles_per_side * TILE, tile / tiles_per_side * TILE);
-                let mut out = Vec::with_capacity(TILE * TILE);
-                for j in tj..(tj + TILE).min(w) {
-                    for i in ti..(ti + TILE).min(w) {
-                        let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-                        let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
-                        out.push(evaluate_point(atlas, uv, placement, settings, &patterns, scratch));
-                    }
-                }
-                out
+        let order = tiled_order(w);
+        let results: Vec<PixelResult> = order
+            .par_iter()
+            .map_init(Vec::new, |scratch, &t| {
+                let (i, j) = (t % w, t / w);
+                let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
+                let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
+                evaluate_point(atlas, uv, placement, settings, &patterns, scratch)
             })
             .collect();
         let mut pixels = vec![PixelResult::EMPTY; w * w];
-        for (tile, results) in tiles.into_iter().enumerate() {
-            let (ti, tj) = (tile % tiles_per_side * TILE, tile / tiles_per_side * TILE);
-            let width = (ti + TILE).min(w) - ti;
-            for (k, result) in results.into_iter().enumerate() {
-                pixels[(tj + k / width) * w + ti + k % width] = result;
-            }
+        for (&t, result) in order.iter().zip(results) {
+            pixels[t] = result;
         }
         let chart = (0..w * w)
             .map(|t| atlas.chart_at(DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64)))

@@ -155,7 +155,7 @@ impl Coverage {
 }
 
 /// Chart distance from which a texel is interior (see [`Coverage::interior_face`]).
-pub const INTERIOR_DISTANCE: u16 = 2;
+const INTERIOR_DISTANCE: u16 = 2;
 
 /// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation) from
 /// the border texels and the texels next to another chart.

@@ -9,4 +9,4 @@ mod triangles;
 pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
 pub use coverage::{Coverage, CoverageDiagnostics};
-pub use patches::{FacePatch, FacePatches, PatchWords};
+pub use patches::{FacePatch, FacePatches};

@@ -16,11 +16,10 @@
 
 use crate::frame::{FaceMap, Frame};
 use crate::mesh::Topology;
-use glam::{DVec2, DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 
-/// One face's patch. The layout is fixed (`repr(C)`, 32 f32 words) because the vector kernel
-/// gathers its words by offset (see [`FacePatch::WORD`]).
+/// One face's patch: 31 f32 words, aligned to cache lines so that a patch spans two of them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(64))]
 pub struct FacePatch {
@@ -34,21 +33,11 @@ pub struct FacePatch {
     pub position: [[f32; 3]; 6],
     /// Unnormalised interpolated normal: `1, du, dv`.
     pub normal: [[f32; 3]; 3],
-    padding: f32,
 }
 
 impl FacePatch {
-    /// Word offsets (in f32 units) of the fields, for gathers.
-    pub const WORD: PatchWords = PatchWords { uv0: 0, chart: 2, area_element: 3, position: 4, normal: 22 };
-
-    const EMPTY: FacePatch = FacePatch {
-        uv0: [0.0; 2],
-        chart: -1,
-        area_element: 0.0,
-        position: [[0.0; 3]; 6],
-        normal: [[0.0; 3]; 3],
-        padding: 0.0,
-    };
+    const EMPTY: FacePatch =
+        FacePatch { uv0: [0.0; 2], chart: -1, area_element: 0.0, position: [[0.0; 3]; 6], normal: [[0.0; 3]; 3] };
 
     fn new(map: &FaceMap, chart: i32, origin: DVec3) -> Self {
         let (pu, pv) = (map.jacobian.pu, map.jacobian.pv);
@@ -72,7 +61,6 @@ impl FacePatch {
             area_element: map.area_element as f32,
             position: coefficients.map(|c| c.as_vec3().to_array()),
             normal: [map.n0, map.nu, map.nv].map(|c| c.as_vec3().to_array()),
-            padding: 0.0,
         }
     }
 
@@ -89,17 +77,6 @@ impl FacePatch {
         let c = self.normal.map(Vec3::from_array);
         (c[0] + c[1] * d.x + c[2] * d.y).normalize_or_zero()
     }
-}
-
-/// Word offsets of the fields of a [`FacePatch`].
-#[derive(Debug, Clone, Copy)]
-#[allow(missing_docs)]
-pub struct PatchWords {
-    pub uv0: usize,
-    pub chart: usize,
-    pub area_element: usize,
-    pub position: usize,
-    pub normal: usize,
 }
 
 /// The patches of every face for one frame.
@@ -131,19 +108,20 @@ impl FacePatches {
             *patch = map.as_ref().map_or(FacePatch::EMPTY, |map| FacePatch::new(map, chart, origin));
         });
     }
-
-    /// The surface at `uv` in `face`, in absolute coordinates (f64), as the fast path sees it.
-    pub fn evaluate(&self, face: u32, uv: DVec2) -> (DVec3, DVec3) {
-        let patch = &self.faces[face as usize];
-        let d = (uv - DVec2::from_array(patch.uv0.map(f64::from))).as_vec2();
-        (patch.position_at(d).as_dvec3() + self.origin, patch.normal_at(d).as_dvec3())
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::mesh::TriangleMesh;
+    use glam::DVec2;
+
+    /// The surface at `uv` in `face`, in absolute coordinates, as the fast path sees it.
+    fn evaluate(patches: &FacePatches, face: u32, uv: DVec2) -> (DVec3, DVec3) {
+        let patch = &patches.faces[face as usize];
+        let d = (uv - DVec2::from_array(patch.uv0.map(f64::from))).as_vec2();
+        (patch.position_at(d).as_dvec3() + patches.origin, patch.normal_at(d).as_dvec3())
+    }
 
     /// The patches reproduce the f64 face maps (smooth position and normal) to f32 precision,
     /// inside the faces and where the lookup extrapolates just outside them.
@@ -160,7 +138,7 @@ mod tests {
             let uv = topology.corner_uvs[f];
             for (b1, b2) in [(0.2, 0.3), (0.0, 0.0), (0.6, 0.5), (-0.1, 0.4)] {
                 let at = uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2;
-                let (position, normal) = patches.evaluate(f as u32, at);
+                let (position, normal) = evaluate(&patches, f as u32, at);
                 worst = worst.max((position - map.smooth_position(at)).length());
                 assert!((normal - map.normal(at)).length() < 1e-5);
             }

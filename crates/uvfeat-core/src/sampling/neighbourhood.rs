@@ -43,10 +43,10 @@ pub struct SamplerSettings {
     /// Fast path for interior samples, or the exact path everywhere.
     pub path: SamplingPath,
     /// The samples' normals are used (bending energy, user operators); the fast path leaves them
-    /// NaN otherwise.
+    /// NaN otherwise (the exact path has them from its lookup anyway).
     pub with_normals: bool,
-    /// The samples' geodesic distances are used (geodesic criterion or geodesic-area K); the fast
-    /// path leaves them NaN otherwise.
+    /// The samples' geodesic distances are used (geodesic criterion or geodesic-area K); they are
+    /// NaN otherwise (the estimate costs an `asin`, or a chord sum, per sample).
     pub with_geodesic: bool,
 }
 
@@ -185,11 +185,15 @@ pub fn accept(
         return false;
     }
     let sin_alpha = centre.normal.dot(offset) / distance;
-    let geodesic = match (settings.geodesic, candidate.own_chart_uv) {
-        (Geodesic::ChordSum, Some(uv)) => chord_sum_distance(atlas, centre, uv, settings.lookup),
-        _ => None,
-    }
-    .unwrap_or_else(|| arc_distance(distance, sin_alpha));
+    let geodesic = if settings.with_geodesic {
+        match (settings.geodesic, candidate.own_chart_uv) {
+            (Geodesic::ChordSum, Some(uv)) => chord_sum_distance(atlas, centre, uv, settings.lookup),
+            _ => None,
+        }
+        .unwrap_or_else(|| arc_distance(distance, sin_alpha))
+    } else {
+        f64::NAN
+    };
     if settings.criterion == Criterion::Geodesic && geodesic >= r {
         return false;
     }
