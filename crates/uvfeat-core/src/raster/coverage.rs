@@ -45,7 +45,7 @@ pub struct Coverage {
     pub chart_distance: Vec<u16>,
     /// The face of each texel deep enough in its chart that a parametric point in it is reached
     /// from anywhere in the chart's texels around it without crossing a boundary (chart distance
-    /// at least 2, not a border texel: [`crate::relocation::well_inside`]); `u32::MAX` elsewhere.
+    /// at least 2, not a border texel: [`crate::relocation::interior_face`]); `u32::MAX` elsewhere.
     /// The sampler's fast path reads a sample's face from it with one load.
     pub interior_face: Vec<u32>,
     /// Counts for reports.

@@ -3,7 +3,7 @@
 //!
 //! Two methods: the exact triangle walk ([`walk`], default) and the SPEC's texel march
 //! ([`march`]). Both take the paper's fast path first: a target well inside the start chart (see
-//! [`well_inside`]) is returned as it is.
+//! [`interior_face`]) is returned as it is.
 
 mod march;
 mod walk;
@@ -43,15 +43,18 @@ pub enum Relocation {
     PerChart,
 }
 
-/// `true` when `target` lies in a texel of `chart` whose 3x3 neighbourhood is all `chart` and that
-/// no chart boundary touches: the point is in the chart, reached without crossing anything (up to
-/// the SPEC's known limitation, a target in its own chart across a gap of a non-convex chart; the
-/// Euclidean rejection removes those samples, and checking the whole segment instead tripled the
-/// time on a 692-chart torus without changing its per-vertex values beyond noise).
+/// The face of the texel of `target` when that texel belongs to `chart`, its 3x3 neighbourhood is
+/// all `chart` and no chart boundary touches it: the point is in the chart, reached without
+/// crossing anything (up to the SPEC's known limitation, a target in its own chart across a gap of
+/// a non-convex chart; the Euclidean rejection removes those samples, and checking the whole
+/// segment instead tripled the time on a 692-chart torus without changing its per-vertex values
+/// beyond noise). It is the face the triangle lookup evaluates for that point. `None` otherwise.
 #[inline]
-pub fn well_inside(atlas: &Atlas, target: DVec2, chart: i32) -> bool {
+pub fn interior_face(atlas: &Atlas, target: DVec2, chart: i32) -> Option<u32> {
     let coverage = &atlas.coverage;
-    atlas.texel_at(target).is_some_and(|t| coverage.chart[t] == chart && coverage.interior_face[t] != u32::MAX)
+    let texel = atlas.texel_at(target)?;
+    let face = coverage.interior_face[texel];
+    (face != u32::MAX && coverage.chart[texel] == chart).then_some(face)
 }
 
 /// Locates `target`, an offset of `start` in `chart`, with `method` (SPEC §1.5 `locate`).
@@ -65,8 +68,8 @@ pub fn locate_with(
     target: DVec2,
     max_jumps: u32,
 ) -> Located {
-    if well_inside(atlas, target, chart) {
-        return Located::Inside { chart, uv: target, m_path: DMat2::IDENTITY, jumps: 0, face: None };
+    if let Some(face) = interior_face(atlas, target, chart) {
+        return Located::Inside { chart, uv: target, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) };
     }
     match method {
         Relocation::March | Relocation::PerChart => march(atlas, start, chart, target, max_jumps),

@@ -2,9 +2,10 @@
 //! by face through the UV triangulation, and where it crosses a seam, carries the rest of the
 //! segment across with that seam's transition map. Unlike the texel march it needs no border texel,
 //! so charts narrower than a texel and corners where several seams meet are crossed exactly, and it
-//! ends in the face that contains the point, so the lookup never extrapolates into a gutter.
+//! ends in the face that contains the point (or, for a point well inside a chart, the face of its
+//! texel), so the lookup never extrapolates into a gutter.
 
-use super::Located;
+use super::{interior_face, Located};
 use crate::atlas::Atlas;
 use crate::mesh::EdgeLink;
 use glam::{DMat2, DVec2};
@@ -154,7 +155,10 @@ const MIN_SKIP: f64 = 3.0;
 /// Faces walked between two attempts to skip ahead.
 const SKIP_EVERY: usize = 4;
 
-/// Locates `target` by walking from `home`, crossing at most `max_jumps` seams.
+/// Locates `target` by walking from `home`, crossing at most `max_jumps` seams. After each seam, a
+/// target that lies well inside the chart across ([`interior_face`]) ends the walk at once, as the
+/// SPEC's loop does: walking on to it would cross that chart's texels one face at a time, the
+/// larger part of a crossing sample's cost at large radii.
 pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Located {
     let topology = &atlas.topology;
     let (mut face, mut entry, mut from, mut target) = (home.face, None, home.point, target);
@@ -175,12 +179,16 @@ pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Locate
                     return Located::Missing;
                 }
                 let across = &topology.sides[topology.sides[side as usize].reverse as usize];
-                face = across.face;
-                entry = Some(across.local);
-                from = map.apply(point);
                 target = map.apply(target);
                 m_path = map.m * m_path;
                 jumps += 1;
+                let chart = topology.face_chart[across.face as usize];
+                if let Some(face) = interior_face(atlas, target, chart) {
+                    return Located::Inside { chart, uv: target, m_path, jumps, face: Some(face) };
+                }
+                face = across.face;
+                entry = Some(across.local);
+                from = map.apply(point);
             }
         }
     }

@@ -1,23 +1,29 @@
 //! The sampler's fast path (issue 12). A pattern point whose target texel lies well inside the
-//! centre's chart (see [`crate::relocation::well_inside`]) is reached without crossing anything,
+//! centre's chart (see [`crate::relocation::interior_face`]) is reached without crossing anything,
 //! and the exact path then evaluates the face that texel shows. The fast path does the same with
 //! one load of [`Coverage::interior_face`] and one compact f32 [`FacePatch`], no walk, no search
-//! and no f64 face map; every other point goes through the exact per-sample path. So both paths
-//! keep the same samples, the same faces and the same weights; they differ by f32 rounding only
-//! (compared in `tests/it/fast_path.rs`).
+//! and no f64 face map. Every other point is located by the exact path's relocation, and where
+//! that ends in a known face (the walk always does), the patch of that face is evaluated too. So
+//! both paths keep the same samples, the same faces and the same weights; they differ by f32
+//! rounding only (compared in `tests/it/fast_path.rs`).
+//!
+//! On x86-64 CPUs with AVX2 and FMA the gathering runs in a copy compiled for them, chosen at run
+//! time (rounding instructions instead of library calls, wider vectors for the batched stages);
+//! elsewhere in the portable copy. Both evaluate the same operations in the same order, so their
+//! results are the same.
 //!
 //! [`Coverage::interior_face`]: crate::raster::Coverage::interior_face
 //! [`FacePatch`]: crate::raster::FacePatch
 
-use super::gather::{exact_sample, offsets};
+use super::gather::{locate_target, located_sample, offsets};
 use super::geodesic::{arc_distance, Geodesic};
 use super::neighbourhood::{unit_ellipse_area, Centre, Sample, SampleCounts, SamplerSettings};
 use super::pattern::Placement;
 use super::reach::Reach;
 use crate::atlas::Atlas;
 use crate::lookup::Lookup;
-use crate::raster::Precision;
-use crate::relocation::Relocation;
+use crate::raster::{FacePatch, Precision};
+use crate::relocation::{Located, Relocation};
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
 /// Which sampler runs: the fast path where it keeps the exact path's answers, or the exact path
@@ -56,14 +62,107 @@ pub fn gather(
     settings: &SamplerSettings,
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+        // SAFETY: the CPU has the features `gather_avx2` is compiled for (checked just above).
+        return unsafe { gather_avx2(atlas, centre, pattern, placement, reach, settings, out) };
+    }
+    gather_batches(atlas, centre, pattern, placement, reach, settings, out)
+}
+
+/// [`gather_batches`] compiled for AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gather_avx2(
+    atlas: &Atlas,
+    centre: &Centre,
+    pattern: &[DVec2],
+    placement: Placement,
+    reach: &Reach,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+) -> SampleCounts {
+    gather_batches(atlas, centre, pattern, placement, reach, settings, out)
+}
+
+/// A centre as the patches see it: positions relative to the patches' origin, in f32.
+struct Kernel<'a> {
+    patches: &'a [FacePatch],
+    origin: DVec3,
+    p: Vec3,
+    normal: Vec3,
+    /// `r^2` and `(1e-6 r)^2`: the ball test on squared distances.
+    outer: f32,
+    inner: f32,
+    settings: &'a SamplerSettings,
+}
+
+impl Kernel<'_> {
+    /// Appends the sample at offset `local` of `patch`, at `relative = q - p` (squared length
+    /// `squared`), when it lies in the ball; `true` if it did.
+    #[inline(always)]
+    fn accept(
+        &self,
+        patch: &FacePatch,
+        local: Vec2,
+        relative: Vec3,
+        squared: f32,
+        uv_area: f64,
+        pattern_index: u32,
+        out: &mut Vec<Sample>,
+    ) -> bool {
+        if !(squared > self.inner && squared < self.outer) {
+            return false;
+        }
+        let distance = squared.sqrt();
+        let sin_alpha = f64::from(self.normal.dot(relative) / distance);
+        let distance = f64::from(distance);
+        out.push(Sample {
+            position: (relative + self.p).as_dvec3() + self.origin,
+            normal: if self.settings.with_normals { patch.normal_at(local).as_dvec3() } else { DVec3::NAN },
+            area: f64::from(patch.area_element) * uv_area,
+            distance,
+            sin_alpha,
+            geodesic: if self.settings.with_geodesic { arc_distance(distance, sin_alpha) } else { f64::NAN },
+            pattern_index,
+        });
+        true
+    }
+
+    /// Evaluates `face` at `uv` and appends the sample when it lies in the ball.
+    #[inline(always)]
+    fn accept_at(&self, face: u32, uv: Vec2, uv_area: f64, pattern_index: u32, out: &mut Vec<Sample>) -> bool {
+        let patch = &self.patches[face as usize];
+        let local = uv - Vec2::from_array(patch.uv0);
+        let relative = patch.position_at(local) - self.p;
+        self.accept(patch, local, relative, relative.length_squared(), uv_area, pattern_index, out)
+    }
+}
+
+/// The gathering of the fast path, batch after batch of [`BATCH`] pattern points.
+#[inline(always)]
+fn gather_batches(
+    atlas: &Atlas,
+    centre: &Centre,
+    pattern: &[DVec2],
+    placement: Placement,
+    reach: &Reach,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+) -> SampleCounts {
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let patches = &atlas.patches;
     let interior = &atlas.coverage.interior_face;
-    let origin = patches.origin;
-    let p = (centre.position - origin).as_vec3();
-    let normal = centre.normal.as_vec3();
     let r = settings.radius as f32;
-    let (outer, inner) = (r * r, (1e-6 * r) * (1e-6 * r));
+    let kernel = Kernel {
+        patches: &patches.faces,
+        origin: patches.origin,
+        p: (centre.position - patches.origin).as_vec3(),
+        normal: centre.normal.as_vec3(),
+        outer: r * r,
+        inner: (1e-6 * r) * (1e-6 * r),
+        settings,
+    };
     let mut counts = SampleCounts::default();
     let mut offsets = offsets(centre, pattern, placement, reach, settings);
     let mut first = 0;
@@ -84,38 +183,33 @@ pub fn gather(
         let mut squared = [0.0f32; BATCH];
         let mut local = [Vec2::ZERO; BATCH];
         for k in 0..len {
-            let Some(patch) = patches.faces.get(faces[k] as usize).filter(|patch| patch.chart == centre.chart) else {
+            let Some(patch) = kernel.patches.get(faces[k] as usize).filter(|patch| patch.chart == centre.chart) else {
                 faces[k] = u32::MAX;
                 continue;
             };
             local[k] = targets[k].as_vec2() - Vec2::from_array(patch.uv0);
-            relative[k] = patch.position_at(local[k]) - p;
+            relative[k] = patch.position_at(local[k]) - kernel.p;
             squared[k] = relative[k].length_squared();
         }
         for k in 0..len {
             let pattern_index = (first + k) as u32;
             let uv_area = cell_area * area_scales[k];
-            if faces[k] == u32::MAX {
-                exact_sample(atlas, centre, targets[k], uv_area, pattern_index, settings, out, &mut counts);
-                continue;
-            }
-            if !(squared[k] > inner && squared[k] < outer) {
-                continue;
-            }
-            let patch = &patches.faces[faces[k] as usize];
-            let distance = squared[k].sqrt();
-            let sin_alpha = f64::from(normal.dot(relative[k]) / distance);
-            let distance = f64::from(distance);
-            out.push(Sample {
-                position: (relative[k] + p).as_dvec3() + origin,
-                normal: if settings.with_normals { patch.normal_at(local[k]).as_dvec3() } else { DVec3::NAN },
-                area: f64::from(patch.area_element) * uv_area,
-                distance,
-                sin_alpha,
-                geodesic: if settings.with_geodesic { arc_distance(distance, sin_alpha) } else { f64::NAN },
-                pattern_index,
-            });
-            counts.valid += 1;
+            let accepted = if faces[k] == u32::MAX {
+                match locate_target(atlas, centre, targets[k], settings) {
+                    Located::Inside { uv, m_path, face: Some(face), .. } if kernel.patches[face as usize].chart >= 0 => {
+                        let uv_area = uv_area * m_path.determinant().abs();
+                        kernel.accept_at(face, uv.as_vec2(), uv_area, pattern_index, out)
+                    }
+                    located => {
+                        located_sample(atlas, centre, located, uv_area, pattern_index, settings, out, &mut counts);
+                        false
+                    }
+                }
+            } else {
+                let patch = &kernel.patches[faces[k] as usize];
+                kernel.accept(patch, local[k], relative[k], squared[k], uv_area, pattern_index, out)
+            };
+            counts.valid += u32::from(accepted);
         }
         first += len;
     }

@@ -21,16 +21,17 @@ enum Reached {
     Missing,
 }
 
+/// Where `target`, an offset of the centre, lies (SPEC §1.5 `locate` with the settings' method).
+pub(super) fn locate_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Located {
+    locate_with(atlas, settings.relocation, centre.uv, Some(&centre.home), centre.chart, target, settings.max_jumps)
+}
+
 fn reach_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Reached {
-    let located = locate_with(
-        atlas,
-        settings.relocation,
-        centre.uv,
-        Some(&centre.home),
-        centre.chart,
-        target,
-        settings.max_jumps,
-    );
+    reached(atlas, centre, locate_target(atlas, centre, target, settings), settings)
+}
+
+/// The surface point of a located target, looked up with the settings' lookup.
+fn reached(atlas: &Atlas, centre: &Centre, located: Located, settings: &SamplerSettings) -> Reached {
     let (chart, uv, m_path, face, jumps) = match located {
         Located::Inside { chart, uv, m_path, face, jumps } => (chart, uv, m_path, face, jumps),
         Located::Border => return Reached::Border,
@@ -87,7 +88,7 @@ pub fn gather(
 /// Relocates, looks up and tests one pattern point at parametric `target`, whose cell stands for
 /// `uv_area` of the centre's chart, and counts what happened to it.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn exact_sample(
+fn exact_sample(
     atlas: &Atlas,
     centre: &Centre,
     target: DVec2,
@@ -97,7 +98,23 @@ pub(super) fn exact_sample(
     out: &mut Vec<Sample>,
     counts: &mut SampleCounts,
 ) {
-    match reach_target(atlas, centre, target, settings) {
+    let located = locate_target(atlas, centre, target, settings);
+    located_sample(atlas, centre, located, uv_area, pattern_index, settings, out, counts);
+}
+
+/// Looks up and tests one located pattern point (see [`exact_sample`]).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn located_sample(
+    atlas: &Atlas,
+    centre: &Centre,
+    located: Located,
+    uv_area: f64,
+    pattern_index: u32,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+    counts: &mut SampleCounts,
+) {
+    match reached(atlas, centre, located, settings) {
         Reached::Surface { point, m_path, own_chart_uv } => {
             let uv_area = m_path.determinant().abs() * uv_area;
             let candidate = Candidate { point, uv_area, own_chart_uv, pattern_index };
