@@ -25,3 +25,15 @@ def shared_mesh():
         return str(folder / name)
 
     return get
+
+
+@pytest.fixture(scope="session", autouse=True)
+def private_atlas_cache(tmp_path_factory):
+    """Cached xatlas atlases go to a folder of this test session, never to the user's cache."""
+    previous = os.environ.get("UVFEAT_CACHE_DIR")
+    os.environ["UVFEAT_CACHE_DIR"] = str(tmp_path_factory.mktemp("uvfeat-cache"))
+    yield
+    if previous is None:
+        del os.environ["UVFEAT_CACHE_DIR"]
+    else:
+        os.environ["UVFEAT_CACHE_DIR"] = previous

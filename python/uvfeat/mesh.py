@@ -189,11 +189,15 @@ class Mesh:
         """(n_vertices,) int64: the welded geometric vertex of every vertex (seam splits merged)."""
         return _readonly(self.topology.vertex_ids)
 
-    def with_atlas(self, *, resolution: int = 1024, padding: int = 4) -> "Mesh":
-        """A copy of this mesh with an automatic multi-chart atlas computed by xatlas."""
+    def with_atlas(self, *, resolution: int = 1024, padding: int = 4, cache: bool = True) -> "Mesh":
+        """A copy of this mesh with an automatic multi-chart atlas computed by xatlas.
+
+        The atlas is cached on disk by the mesh's content (see :mod:`uvfeat.unwrap`), so a second
+        call on the same mesh does not unwrap again; ``cache=False`` always unwraps.
+        """
         from .unwrap import xatlas_uvs
 
-        uvs, uv_faces = xatlas_uvs(self._positions, self._faces, resolution=resolution, padding=padding)
+        uvs, uv_faces = xatlas_uvs(self._positions, self._faces, resolution=resolution, padding=padding, cache=cache)
         return Mesh(self._positions, self._faces, uvs, uv_faces, name=self.name)
 
     def with_positions(self, positions) -> "Mesh":

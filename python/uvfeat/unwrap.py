@@ -1,14 +1,40 @@
-"""Automatic multi-chart UV atlases with xatlas, for meshes that have none (SPEC §1.1)."""
+"""Automatic multi-chart UV atlases with xatlas, for meshes that have none (SPEC §1.1).
+
+The unwrap is the slowest step for a mesh without UVs (about 60 s for a 200K-face scan), and it
+depends only on the mesh and the options, so its result is cached on disk, keyed by a hash of the
+positions, the faces, the options and the xatlas version: a second run on the same mesh reads the
+atlas back in milliseconds. The cache lives in ``$UVFEAT_CACHE_DIR`` (default
+``$XDG_CACHE_HOME/uvfeat`` or ``~/.cache/uvfeat``); ``UVFEAT_CACHE_DIR=off`` or ``cache=False``
+turns it off. A cache file that cannot be read is ignored and written anew.
+"""
 
 from __future__ import annotations
+
+import hashlib
+import os
+import tempfile
+import warnings
+from pathlib import Path
 
 import numpy as np
 
 from .errors import InvalidMeshError
 
+#: Changes whenever what a cache file holds, or how the atlas is made, changes.
+_CACHE_FORMAT = 1
+
+
+def cache_dir() -> Path | None:
+    """The folder of cached atlases, or ``None`` when caching is turned off."""
+    configured = os.environ.get("UVFEAT_CACHE_DIR")
+    if configured is not None:
+        return None if configured.strip().lower() in ("", "off", "0", "none") else Path(configured)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "uvfeat"
+
 
 def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 1024, padding: int = 4,
-               max_chart_area: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+               max_chart_area: float = 0.0, cache: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Charts and packs the mesh with xatlas.
 
     Parameters
@@ -23,6 +49,8 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
     max_chart_area : float
         Upper bound of a chart's surface area (0 = xatlas's default, unbounded); smaller values
         give more charts.
+    cache : bool
+        Read and write the on-disk atlas cache (see the module's documentation).
 
     Returns
     -------
@@ -31,14 +59,32 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
     """
     import xatlas
 
+    positions = np.ascontiguousarray(positions, dtype=np.float64)
+    faces = np.ascontiguousarray(faces, dtype=np.int64)
+    options = (int(resolution), int(padding), float(max_chart_area))
+    folder = cache_dir() if cache else None
+    path = None
+    if folder is not None:
+        path = folder / "atlases" / f"{_cache_key(positions, faces, options, xatlas)}.npz"
+        cached = _read_cached(path, len(faces))
+        if cached is not None:
+            return cached
+    uvs, uv_faces = _unwrap(xatlas, positions, faces, *options)
+    if path is not None:
+        _write_cached(path, uvs, uv_faces)
+    return uvs, uv_faces
+
+
+def _unwrap(xatlas, positions: np.ndarray, faces: np.ndarray, resolution: int, padding: int,
+            max_chart_area: float) -> tuple[np.ndarray, np.ndarray]:
     atlas = xatlas.Atlas()
-    atlas.add_mesh(np.ascontiguousarray(positions, dtype=np.float32), np.ascontiguousarray(faces, dtype=np.uint32))
+    atlas.add_mesh(positions.astype(np.float32), np.ascontiguousarray(faces, dtype=np.uint32))
     chart_options = xatlas.ChartOptions()
     if max_chart_area > 0:
-        chart_options.max_chart_area = float(max_chart_area)
+        chart_options.max_chart_area = max_chart_area
     pack_options = xatlas.PackOptions()
-    pack_options.resolution = int(resolution)
-    pack_options.padding = int(padding)
+    pack_options.resolution = resolution
+    pack_options.padding = padding
     pack_options.bilinear = True
     atlas.generate(chart_options, pack_options)
     vmapping, indices, uvs = atlas[0]
@@ -46,3 +92,41 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
         raise InvalidMeshError("xatlas changed the faces of the mesh (degenerate or non-manifold input?); "
                                "clean the mesh or provide UVs")
     return np.ascontiguousarray(uvs, dtype=np.float64), np.ascontiguousarray(indices, dtype=np.int64)
+
+
+def _cache_key(positions: np.ndarray, faces: np.ndarray, options: tuple, xatlas) -> str:
+    digest = hashlib.sha256()
+    version = getattr(xatlas, "__version__", "unknown")
+    digest.update(repr((_CACHE_FORMAT, version, options, positions.shape, faces.shape)).encode())
+    digest.update(positions.tobytes())
+    digest.update(faces.tobytes())
+    return digest.hexdigest()
+
+
+def _read_cached(path: Path, n_faces: int) -> tuple[np.ndarray, np.ndarray] | None:
+    if not path.is_file():
+        return None
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            uvs, uv_faces = data["uvs"], data["uv_faces"]
+    except Exception:  # a truncated or foreign file: unwrap again and overwrite it
+        return None
+    usable = (uvs.ndim == 2 and uvs.shape[1] == 2 and uv_faces.shape == (n_faces, 3) and len(uvs) > 0
+              and int(uv_faces.min(initial=0)) >= 0 and int(uv_faces.max(initial=0)) < len(uvs))
+    return (uvs.astype(np.float64), uv_faces.astype(np.int64)) if usable else None
+
+
+def _write_cached(path: Path, uvs: np.ndarray, uv_faces: np.ndarray) -> None:
+    temporary = None
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        # Written beside the target and renamed, so that concurrent runs never read half a file.
+        with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".tmp", delete=False) as handle:
+            temporary = Path(handle.name)
+            np.savez(handle, uvs=uvs, uv_faces=uv_faces)
+        os.replace(temporary, path)
+    except OSError as error:
+        if temporary is not None:
+            temporary.unlink(missing_ok=True)
+        warnings.warn(f"could not write the atlas cache {path}: {error}; set UVFEAT_CACHE_DIR to a writable "
+                      "folder or to 'off'", RuntimeWarning, stacklevel=3)

@@ -1,0 +1,74 @@
+"""The on-disk cache of xatlas atlases: keyed by the mesh's content and the options, read back
+instead of unwrapping again, and never trusted when unreadable."""
+
+import numpy as np
+import pytest
+import trimesh
+
+import uvfeat
+from uvfeat import unwrap
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("UVFEAT_CACHE_DIR", str(tmp_path))
+    return tmp_path / "atlases"
+
+
+@pytest.fixture
+def sphere():
+    ico = trimesh.creation.icosphere(subdivisions=3)
+    return uvfeat.Mesh(ico.vertices, ico.faces, name="icosphere")
+
+
+def _forbid_unwrapping(monkeypatch):
+    def unwrap_called(*args, **kwargs):
+        raise AssertionError("xatlas ran although the atlas was cached")
+
+    monkeypatch.setattr(unwrap, "_unwrap", unwrap_called)
+
+
+def test_a_second_unwrap_of_the_same_mesh_reads_the_cache(cache, sphere, monkeypatch):
+    first = sphere.with_atlas(resolution=256)
+    assert len(list(cache.glob("*.npz"))) == 1
+    _forbid_unwrapping(monkeypatch)
+    second = sphere.with_atlas(resolution=256)
+    assert np.array_equal(first.uvs, second.uvs) and np.array_equal(first.uv_faces, second.uv_faces)
+    assert second.n_charts == first.n_charts > 1
+
+
+def test_other_positions_or_options_unwrap_again(cache, sphere):
+    sphere.with_atlas(resolution=256)
+    sphere.with_atlas(resolution=512)
+    moved = sphere.positions.copy()
+    moved[0, 0] += 1e-9
+    uvfeat.Mesh(moved, sphere.faces).with_atlas(resolution=256)
+    assert len(list(cache.glob("*.npz"))) == 3
+
+
+def test_a_corrupt_cache_file_is_ignored_and_rewritten(cache, sphere):
+    first = sphere.with_atlas(resolution=256)
+    (path,) = cache.glob("*.npz")
+    path.write_bytes(b"not an npz file")
+    again = sphere.with_atlas(resolution=256)
+    assert np.array_equal(first.uvs, again.uvs)
+    with np.load(path) as data:
+        assert np.array_equal(data["uvs"], first.uvs)
+
+
+def test_the_cache_can_be_turned_off(tmp_path, sphere, monkeypatch):
+    monkeypatch.setenv("UVFEAT_CACHE_DIR", "off")
+    assert unwrap.cache_dir() is None
+    sphere.with_atlas(resolution=256)
+    monkeypatch.setenv("UVFEAT_CACHE_DIR", str(tmp_path))
+    sphere.with_atlas(resolution=256, cache=False)
+    assert not (tmp_path / "atlases").exists()
+
+
+def test_an_unwritable_cache_warns_and_still_returns_the_atlas(tmp_path, sphere, monkeypatch):
+    blocker = tmp_path / "file"
+    blocker.write_text("a file where the cache folder should be")
+    monkeypatch.setenv("UVFEAT_CACHE_DIR", str(blocker))
+    with pytest.warns(RuntimeWarning, match="atlas cache"):
+        mesh = sphere.with_atlas(resolution=256)
+    assert mesh.n_charts > 1
