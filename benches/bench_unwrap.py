@@ -1,0 +1,109 @@
+"""Meshes without UVs (issue 12): what the xatlas unwrap costs against the features, which xatlas
+options buy speed without costing accuracy, and what the atlas cache gives on a second run.
+
+    .venv/bin/python benches/bench_unwrap.py [--mesh PATH] [--radius 2] [--subdivide 1]
+
+Default mesh: the Stanford dragon from the shared meshes (100K faces, no UVs); ``--subdivide 1``
+splits every face in four first (400K faces) to reach the size of large scans. For every option
+set it prints the unwrap time, the charts, and the per-vertex H of the default configuration at
+``--radius`` % of the diagonal against the object-space reference (%AE = mean |x - ref| /
+(p99 - p1) of ref), then the end-to-end `uvfeat compute` time of a first run (empty cache) and of
+a second run (cached atlas), both in fresh processes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+import trimesh
+
+import uvfeat
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+OPTION_SETS = {
+    "default": {},
+    "no chart rotation": {"rotate_charts": False},
+    "block-aligned packing": {"blockAlign": True},
+    "brute-force packing": {"bruteForce": True},
+}
+
+
+def unwrap_with(positions, faces, pack_overrides: dict) -> tuple[np.ndarray, np.ndarray]:
+    import xatlas
+
+    atlas = xatlas.Atlas()
+    atlas.add_mesh(positions.astype(np.float32), faces.astype(np.uint32))
+    pack = xatlas.PackOptions()
+    pack.resolution, pack.padding, pack.bilinear = 1024, 4, True
+    for name, value in pack_overrides.items():
+        setattr(pack, name, value)
+    atlas.generate(xatlas.ChartOptions(), pack)
+    vmapping, indices, uvs = atlas[0]
+    assert np.array_equal(vmapping[indices], faces), "xatlas changed the faces"
+    return uvs.astype(np.float64), indices.astype(np.int64)
+
+
+def percent_ae(values: np.ndarray, truth: np.ndarray) -> float:
+    ok = np.isfinite(values) & np.isfinite(truth)
+    spread = np.percentile(truth[ok], 99) - np.percentile(truth[ok], 1)
+    return 100.0 * float(np.mean(np.abs(values[ok] - truth[ok]))) / spread
+
+
+def end_to_end(path: pathlib.Path, radius: float, cache: str) -> float:
+    with tempfile.TemporaryDirectory() as out:
+        command = [sys.executable, "-m", "uvfeat", "compute", str(path), "--feature", "mean_curvature",
+                   "--radius", f"{radius}%", "--out", out]
+        start = time.perf_counter()
+        subprocess.run(command, check=True, capture_output=True, env={**os.environ, "UVFEAT_CACHE_DIR": cache})
+        return time.perf_counter() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--mesh", default=str(REPO.parent / "shared" / "meshes" / "dragon.obj"))
+    parser.add_argument("--radius", type=float, default=2.0, help="radius in %% of the diagonal")
+    parser.add_argument("--subdivide", type=int, default=0, help="split every face in four this many times")
+    parser.add_argument("--skip-options", action="store_true", help="only the end-to-end cache timings")
+    args = parser.parse_args()
+
+    loaded = trimesh.load(args.mesh, force="mesh", process=False)
+    positions, faces = np.asarray(loaded.vertices, dtype=np.float64), np.asarray(loaded.faces, dtype=np.int64)
+    for _ in range(args.subdivide):
+        positions, faces = trimesh.remesh.subdivide(positions, faces)
+    name = f"{pathlib.Path(args.mesh).name} ({len(faces):,} faces)"
+    radius = args.radius / 100.0 * float(np.linalg.norm(positions.max(0) - positions.min(0)))
+    print(f"{name}, r = {args.radius} % of the diagonal, {os.cpu_count()} CPUs")
+
+    if not args.skip_options:
+        reference = uvfeat.reference.compute(uvfeat.Mesh(positions, faces), "mean_curvature", radius)["mean_curvature"]
+        print("| xatlas options | unwrap s | charts | features s | H %AE vs object-space reference |")
+        print("|---|---|---|---|---|")
+        for label, overrides in OPTION_SETS.items():
+            start = time.perf_counter()
+            uvs, uv_faces = unwrap_with(positions, faces, overrides)
+            unwrap_s = time.perf_counter() - start
+            mesh = uvfeat.Mesh(positions, faces, uvs, uv_faces)
+            start = time.perf_counter()
+            h = uvfeat.compute(mesh, "mean_curvature", radius)["mean_curvature"]
+            features_s = time.perf_counter() - start
+            print(f"| {label} | {unwrap_s:.1f} | {mesh.n_charts} | {features_s:.1f} | {percent_ae(h, reference):.2f} |",
+                  flush=True)
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = pathlib.Path(folder) / "mesh.ply"
+        trimesh.Trimesh(positions, faces, process=False).export(path)
+        cache = str(pathlib.Path(folder) / "cache")
+        first = end_to_end(path, args.radius, cache)
+        second = end_to_end(path, args.radius, cache)
+        print(f"uvfeat compute end to end: first run {first:.1f} s, second run (cached atlas) {second:.1f} s")
+
+
+if __name__ == "__main__":
+    main()
