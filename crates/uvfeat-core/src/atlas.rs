@@ -79,12 +79,18 @@ impl Atlas {
 
     /// Index of the texel containing the parametric point `uv`; `None` outside `[0, 1)^2`.
     pub fn texel_at(&self, uv: DVec2) -> Option<usize> {
+        self.texel_coordinates(uv).map(|(i, j)| j * self.resolution() + i)
+    }
+
+    /// Column and row `(i, j)` of the texel containing `uv`; `None` outside the unit square.
+    #[inline]
+    pub fn texel_coordinates(&self, uv: DVec2) -> Option<(usize, usize)> {
         let r = self.resolution() as f64;
         let (x, y) = (uv.x * r, uv.y * r);
         if !(x >= 0.0 && y >= 0.0 && x < r && y < r) {
             return None;
         }
-        Some(y as usize * self.resolution() + x as usize)
+        Some((x as usize, y as usize))
     }
 
     /// Chart id at `uv` (-1 for empty texels and points outside the domain).

@@ -105,13 +105,16 @@ pub struct StatsSettings {
 impl NeighbourhoodStats {
     /// Accumulates the samples of a neighbourhood whose centre has normal `normal`.
     pub fn accumulate(&mut self, samples: &[Sample], normal: glam::DVec3, settings: &StatsSettings) {
+        // One division per sample: the others are products with these (rounding aside, the same).
+        let inverse_radius = 1.0 / settings.radius;
+        let inverse_radius2 = inverse_radius * inverse_radius;
         for s in samples {
             let w = match settings.volume_weighting {
                 VolumeWeighting::Distance => s.area * s.distance,
                 VolumeWeighting::Uniform => 1.0,
             };
             self.elevation.add(w, s.sin_alpha);
-            self.radial.add(w, s.distance / settings.radius);
+            self.radial.add(w, s.distance * inverse_radius);
             let inside = s.geodesic < settings.radius;
             self.geodesic_disk.add(s.area, if inside { 1.0 } else { 0.0 });
             if s.distance >= settings.rho_min {
@@ -122,8 +125,8 @@ impl NeighbourhoodStats {
                 // dominate Var(k) and bias K_m = H^2 - 2 Var low. Weighting by rho^2 keeps the
                 // estimator consistent (any radial weight does, SPEC §2.5b) and removes that bias
                 // (measured: unit sphere |K-1| 0.032 -> 0.012, torus outer K -20 % -> -5 %).
-                let w = s.area * s.distance * s.distance / (settings.radius * settings.radius);
-                self.normal_curvature.add(w, -2.0 * s.sin_alpha / s.distance);
+                let w = s.area * s.distance * s.distance * inverse_radius2;
+                self.normal_curvature.add(w, -2.0 * s.sin_alpha * s.distance * inv_rho2);
             }
         }
     }

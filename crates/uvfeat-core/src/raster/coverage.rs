@@ -2,6 +2,7 @@
 //! only, so it is built once per topology and resolution; each frame then evaluates positions,
 //! normals and metrics from it (SPEC §1.9, animation).
 
+use super::blocked::Blocked;
 use super::boundary::{rasterise_edge, EdgeHit};
 use super::triangles::{rasterise_triangle, TriangleHit};
 use crate::mesh::Topology;
@@ -46,8 +47,9 @@ pub struct Coverage {
     /// The face of each texel deep enough in its chart that a parametric point in it is reached
     /// from anywhere in the chart's texels around it without crossing a boundary (chart distance
     /// at least 2, not a border texel: [`crate::relocation::interior_face`]); `u32::MAX` elsewhere.
-    /// The sampler's fast path reads a sample's face from it with one load.
-    pub interior_face: Vec<u32>,
+    /// The sampler's fast path reads a sample's face from it with one load; stored in blocks, as
+    /// the samples read it at random over whole neighbourhoods.
+    pub interior_face: Blocked<u32>,
     /// Counts for reports.
     pub diagnostics: CoverageDiagnostics,
 }
@@ -63,18 +65,19 @@ impl Coverage {
             chart: vec![-1; n],
             border_side: vec![-1; n],
             chart_distance: Vec::new(),
-            interior_face: Vec::new(),
+            interior_face: Blocked::default(),
             diagnostics: CoverageDiagnostics::default(),
         };
         coverage.rasterise_triangles(topology);
         coverage.rasterise_boundaries(topology);
         coverage.chart_distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
-        coverage.interior_face = (0..n)
+        let interior_face: Vec<u32> = (0..n)
             .map(|t| {
                 let interior = coverage.chart_distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
                 u32::try_from(coverage.face[t]).ok().filter(|_| interior).unwrap_or(u32::MAX)
             })
             .collect();
+        coverage.interior_face = Blocked::from_rows(&interior_face, resolution, u32::MAX);
         coverage
     }
 

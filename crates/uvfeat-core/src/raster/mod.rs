@@ -1,11 +1,13 @@
 //! Stage 2 of the pipeline (SPEC §1.3): rasterisation of the charts into parametric-space buffers.
 
+mod blocked;
 mod boundary;
 mod buffers;
 mod coverage;
 mod patches;
 mod triangles;
 
+pub use blocked::Blocked;
 pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
 pub use coverage::{Coverage, CoverageDiagnostics};

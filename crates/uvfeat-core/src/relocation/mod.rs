@@ -51,10 +51,9 @@ pub enum Relocation {
 /// beyond noise). It is the face the triangle lookup evaluates for that point. `None` otherwise.
 #[inline]
 pub fn interior_face(atlas: &Atlas, target: DVec2, chart: i32) -> Option<u32> {
-    let coverage = &atlas.coverage;
-    let texel = atlas.texel_at(target)?;
-    let face = coverage.interior_face[texel];
-    (face != u32::MAX && coverage.chart[texel] == chart).then_some(face)
+    let (i, j) = atlas.texel_coordinates(target)?;
+    let face = atlas.coverage.interior_face.at(i, j);
+    (face != u32::MAX && atlas.topology.face_chart[face as usize] == chart).then_some(face)
 }
 
 /// Locates `target`, an offset of `start` in `chart`, with `method` (SPEC §1.5 `locate`).

@@ -33,8 +33,9 @@ const MAX_PROBES: usize = 6;
 fn rim_directions(samples: &[Sample], pattern: &[DVec2], placement: Placement) -> [bool; DIRECTIONS] {
     let mut marked = [false; DIRECTIONS];
     for sample in samples {
-        let w = placement.place(pattern[sample.pattern_index as usize]);
-        if w.length_squared() >= EDGE_RADIUS * EDGE_RADIUS {
+        let disk = pattern[sample.pattern_index as usize];
+        if placement.placed_area_radius(disk) >= EDGE_RADIUS * EDGE_RADIUS {
+            let w = placement.place(disk);
             let (below, above, _) = Reach::bracket(w.y.atan2(w.x));
             marked[below] = true;
             marked[above] = true;

@@ -15,7 +15,7 @@
 //! [`Coverage::interior_face`]: crate::raster::Coverage::interior_face
 //! [`FacePatch`]: crate::raster::FacePatch
 
-use super::gather::{locate_target, located_sample, offsets};
+use super::gather::{locate_target, located_sample, Domain};
 use super::geodesic::{arc_distance, Geodesic};
 use super::neighbourhood::{unit_ellipse_area, Centre, Sample, SampleCounts, SamplerSettings};
 use super::pattern::Placement;
@@ -139,6 +139,66 @@ impl Kernel<'_> {
     }
 }
 
+/// Where the points of one batch land, computed lane by lane in f32 (vectorised): the parametric
+/// target, the factor `m(phi)^2` of its cell area, and where the interior face of the geometry
+/// texel under it is stored (`u32::MAX` off the domain).
+struct Landing {
+    u: [f32; BATCH],
+    v: [f32; BATCH],
+    area_scale: [f64; BATCH],
+    texel: [u32; BATCH],
+}
+
+impl Landing {
+    #[inline(always)]
+    fn new(atlas: &Atlas, centre: &Centre, domain: &Domain, points: &[DVec2]) -> Self {
+        let mut landing = Self {
+            u: [0.0; BATCH],
+            v: [0.0; BATCH],
+            area_scale: [0.0; BATCH],
+            texel: [u32::MAX; BATCH],
+        };
+        let len = points.len();
+        let (mut wx, mut wy) = ([0.0f32; BATCH], [0.0f32; BATCH]);
+        let shift = domain.placement.shift() as f32;
+        for k in 0..len {
+            // Placement::place in f32: the area radius shifted modulo 1, the point moved along its ray.
+            let (dx, dy) = (points[k].x as f32, points[k].y as f32);
+            let area_radius = dx * dx + dy * dy;
+            let shifted = area_radius + shift;
+            let shifted = if shifted >= 1.0 { shifted - 1.0 } else { shifted };
+            let scale = if area_radius > 0.0 { (shifted / area_radius).sqrt() } else { 0.0 };
+            (wx[k], wy[k]) = (dx * scale, dy * scale);
+        }
+        let mut margins = [0.0f64; BATCH];
+        match domain.uniform {
+            Some(margin) => margins[..len].fill(margin),
+            None => {
+                for (margin, &disk) in margins.iter_mut().zip(points) {
+                    let w = domain.placement.place(disk);
+                    *margin = domain.reach.at(w.y.atan2(w.x));
+                }
+            }
+        }
+        let to_uv = (domain.ellipse * domain.placement.turn()).as_mat2();
+        let (cu, cv) = (centre.uv.x as f32, centre.uv.y as f32);
+        let interior = &atlas.coverage.interior_face;
+        let side = atlas.resolution() as f32;
+        for k in 0..len {
+            let margin = margins[k] as f32;
+            let u = cu + margin * (to_uv.x_axis.x * wx[k] + to_uv.y_axis.x * wy[k]);
+            let v = cv + margin * (to_uv.x_axis.y * wx[k] + to_uv.y_axis.y * wy[k]);
+            let (x, y) = (u * side, v * side);
+            let on_domain = x >= 0.0 && y >= 0.0 && x < side && y < side;
+            landing.texel[k] =
+                if on_domain { interior.index(x as usize, y as usize) as u32 } else { u32::MAX };
+            (landing.u[k], landing.v[k]) = (u, v);
+            landing.area_scale[k] = margins[k] * margins[k];
+        }
+        landing
+    }
+}
+
 /// The gathering of the fast path, batch after batch of [`BATCH`] pattern points.
 #[inline(always)]
 fn gather_batches(
@@ -163,39 +223,36 @@ fn gather_batches(
         inner: (1e-6 * r) * (1e-6 * r),
         settings,
     };
+    let domain = Domain::new(centre, placement, reach, settings);
     let mut counts = SampleCounts::default();
-    let mut offsets = offsets(centre, pattern, placement, reach, settings);
-    let mut first = 0;
-    while first < pattern.len() {
-        let len = BATCH.min(pattern.len() - first);
-        let mut targets = [DVec2::ZERO; BATCH];
-        let mut area_scales = [0.0f64; BATCH];
+    for (batch, points) in pattern.chunks(BATCH).enumerate() {
+        let first = batch * BATCH;
+        let landing = Landing::new(atlas, centre, &domain, points);
         let mut faces = [u32::MAX; BATCH];
-        for k in 0..len {
-            let offset = offsets.next().expect("one offset per pattern point");
-            targets[k] = centre.uv + offset.uv;
-            area_scales[k] = offset.area_scale;
-            if let Some(t) = atlas.texel_at(targets[k]) {
-                faces[k] = interior[t];
+        for (face, &texel) in faces.iter_mut().zip(&landing.texel[..points.len()]) {
+            if let Some(&interior) = interior.get(texel as usize) {
+                *face = interior;
             }
         }
         let mut relative = [Vec3::ZERO; BATCH];
         let mut squared = [0.0f32; BATCH];
         let mut local = [Vec2::ZERO; BATCH];
-        for k in 0..len {
+        for k in 0..points.len() {
             let Some(patch) = kernel.patches.get(faces[k] as usize).filter(|patch| patch.chart == centre.chart) else {
                 faces[k] = u32::MAX;
                 continue;
             };
-            local[k] = targets[k].as_vec2() - Vec2::from_array(patch.uv0);
+            local[k] = Vec2::new(landing.u[k], landing.v[k]) - Vec2::from_array(patch.uv0);
             relative[k] = patch.position_at(local[k]) - kernel.p;
             squared[k] = relative[k].length_squared();
         }
-        for k in 0..len {
+        for k in 0..points.len() {
             let pattern_index = (first + k) as u32;
-            let uv_area = cell_area * area_scales[k];
             let accepted = if faces[k] == u32::MAX {
-                match locate_target(atlas, centre, targets[k], settings) {
+                // Off the fast path: the exact path's offset and relocation.
+                let offset = domain.offset(points[k]);
+                let uv_area = cell_area * offset.area_scale;
+                match locate_target(atlas, centre, centre.uv + offset.uv, settings) {
                     Located::Inside { uv, m_path, face: Some(face), .. } if kernel.patches[face as usize].chart >= 0 => {
                         let uv_area = uv_area * m_path.determinant().abs();
                         kernel.accept_at(face, uv.as_vec2(), uv_area, pattern_index, out)
@@ -207,11 +264,11 @@ fn gather_batches(
                 }
             } else {
                 let patch = &kernel.patches[faces[k] as usize];
+                let uv_area = cell_area * landing.area_scale[k];
                 kernel.accept(patch, local[k], relative[k], squared[k], uv_area, pattern_index, out)
             };
             counts.valid += u32::from(accepted);
         }
-        first += len;
     }
     counts
 }

@@ -139,11 +139,30 @@ pub(super) fn offsets<'a>(
     reach: &'a Reach,
     settings: &SamplerSettings,
 ) -> impl Iterator<Item = Offset> + 'a {
-    let ellipse = unit_ellipse(centre, settings);
-    let uniform = reach.is_uniform().then(|| reach.margin(0));
-    pattern.iter().map(move |&disk| {
-        let w = placement.place(disk);
-        let margin = uniform.unwrap_or_else(|| reach.at(w.y.atan2(w.x)));
-        Offset { uv: ellipse * (margin * w), area_scale: margin * margin }
-    })
+    let domain = Domain::new(centre, placement, reach, settings);
+    pattern.iter().map(move |&disk| domain.offset(disk))
+}
+
+/// The sampling domain of one centre: the pattern's placement, the reach and the metric ellipse.
+pub(super) struct Domain<'a> {
+    pub ellipse: DMat2,
+    pub placement: Placement,
+    pub reach: &'a Reach,
+    /// The margin of every direction when the reach is uniform.
+    pub uniform: Option<f64>,
+}
+
+impl<'a> Domain<'a> {
+    pub fn new(centre: &Centre, placement: Placement, reach: &'a Reach, settings: &SamplerSettings) -> Self {
+        let uniform = reach.is_uniform().then(|| reach.margin(0));
+        Self { ellipse: unit_ellipse(centre, settings), placement, reach, uniform }
+    }
+
+    /// The offset of the pattern point `disk`.
+    #[inline]
+    pub fn offset(&self, disk: DVec2) -> Offset {
+        let w = self.placement.place(disk);
+        let margin = self.uniform.unwrap_or_else(|| self.reach.at(w.y.atan2(w.x)));
+        Offset { uv: self.ellipse * (margin * w), area_scale: margin * margin }
+    }
 }
