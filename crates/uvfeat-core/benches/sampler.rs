@@ -1,14 +1,17 @@
 //! Sampler benchmark (issue 12): feature maps of the default configuration on the 102,400-face
-//! lat-long torus, fast path against the exact path, with CPU time per sample.
+//! lat-long torus, fast path against the exact path, with CPU time per sample, beside the floor of
+//! any parametric sampler: a bare bilinear gather of the position buffer over the same ellipses
+//! (same texels, samples and footprint; no relocation, no estimator).
 //!
-//!     cargo bench -p uvfeat-core --bench sampler [-- --radius 4 --samples 256]
+//!     cargo bench -p uvfeat-core --bench sampler [-- --radius 4 --samples 256 --fast-only]
 
+use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
 use uvfeat_core::features::Feature;
 use uvfeat_core::mesh::{Topology, TriangleMesh};
 use uvfeat_core::output::{ComputeSettings, FeatureMaps};
-use uvfeat_core::sampling::SamplingPath;
+use uvfeat_core::sampling::{disk_pattern, pixel_angle, SamplingPath};
 use uvfeat_core::{Atlas, AtlasOptions};
 
 /// CPU seconds of this process (user + system) from /proc, or NaN where it is not available.
@@ -17,6 +20,121 @@ fn cpu_seconds() -> f64 {
     let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or("").split_whitespace().collect();
     let ticks = |k: usize| fields.get(k).and_then(|x| x.parse::<f64>().ok()).unwrap_or(f64::NAN);
     (ticks(11) + ticks(12)) / 100.0
+}
+
+/// The position buffer as three planes of f32 (SoA), NaN off the charts, and as it is (AoS).
+struct Planes {
+    side: usize,
+    xyz: [Vec<f32>; 3],
+    points: Vec<[f32; 3]>,
+}
+
+impl Planes {
+    fn new(atlas: &Atlas) -> Self {
+        let position = &atlas.buffers.position;
+        Self {
+            side: atlas.resolution(),
+            xyz: [0, 1, 2].map(|c| position.iter().map(|p| p[c]).collect()),
+            points: position.clone(),
+        }
+    }
+
+    /// Bilinear filtering of the three planes at texel coordinates `(x, y)` (texel centres at +0.5).
+    #[inline(always)]
+    fn bilinear(&self, x: f32, y: f32) -> [f32; 3] {
+        let (x, y) = ((x - 0.5).clamp(0.0, (self.side - 2) as f32), (y - 0.5).clamp(0.0, (self.side - 2) as f32));
+        let (i, j) = (x as usize, y as usize);
+        let (fx, fy) = (x - i as f32, y - j as f32);
+        let t = j * self.side + i;
+        let weights = [(1.0 - fx) * (1.0 - fy), fx * (1.0 - fy), (1.0 - fx) * fy, fx * fy];
+        let texels = [t, t + 1, t + self.side, t + self.side + 1];
+        self.xyz.each_ref().map(|plane| texels.iter().zip(weights).map(|(&t, w)| plane[t] * w).sum())
+    }
+
+    /// The position of the texel containing texel coordinates `(x, y)`: one load.
+    #[inline(always)]
+    fn nearest(&self, x: f32, y: f32) -> [f32; 3] {
+        let last = (self.side - 1) as f32;
+        self.points[y.clamp(0.0, last) as usize * self.side + x.clamp(0.0, last) as usize]
+    }
+}
+
+/// Pattern points `d` at texel coordinates `centre + ellipse d` inside the ball around `p`,
+/// compiled for AVX2 and FMA (the loads are the cost: 12 per sample bilinear, 1 nearest).
+#[target_feature(enable = "avx2,fma")]
+unsafe fn count_inside(
+    planes: &Planes,
+    bilinear: bool,
+    pattern: &[[f32; 2]],
+    centre: [f32; 2],
+    e: [f32; 4],
+    p: [f32; 3],
+    r2: f32,
+) -> u64 {
+    let mut count = 0;
+    for &[dx, dy] in pattern {
+        let (x, y) = (centre[0] + e[0] * dx + e[2] * dy, centre[1] + e[1] * dx + e[3] * dy);
+        let q = if bilinear { planes.bilinear(x, y) } else { planes.nearest(x, y) };
+        let d2 = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2);
+        count += u64::from(d2 < r2);
+    }
+    count
+}
+
+/// The gather floor: every computation texel reads `samples` bilinear positions on its metric
+/// ellipse (margin 1.25, turned per pixel, as the sampler places them) and counts those in the
+/// ball, by bilinear filtering or from the nearest texel. Returns CPU seconds and the mean count
+/// per texel.
+fn gather_floor(
+    atlas: &Atlas,
+    planes: &Planes,
+    bilinear: bool,
+    radius: f64,
+    samples: usize,
+    compute_side: usize,
+) -> (f64, f64) {
+    let pattern: Vec<[f32; 2]> = disk_pattern(samples, 0, 0).iter().map(|d| [d.x as f32, d.y as f32]).collect();
+    let side = atlas.resolution();
+    let (r2, reach) = ((radius * radius) as f32, (1.25 * radius) as f32);
+    let cpu = cpu_seconds();
+    // Tile after tile of 16 x 16 texels, as the sampler evaluates them.
+    let tiles = compute_side.div_ceil(16);
+    let (texels, inside) = (0..tiles * tiles * 256)
+        .into_par_iter()
+        .with_min_len(256)
+        .map(|t| {
+            let (tile, within) = (t / 256, t % 256);
+            let (i, j) = (tile % tiles * 16 + within % 16, tile / tiles * 16 + within / 16);
+            if i >= compute_side || j >= compute_side {
+                return (0u64, 0u64);
+            }
+            let (x, y) = (
+                (i as f32 + 0.5) / compute_side as f32 * side as f32,
+                (j as f32 + 0.5) / compute_side as f32 * side as f32,
+            );
+            let texel = y as usize * side + x as usize;
+            let [s1, s2] = atlas.buffers.sigma[texel];
+            if !(s2 > 0.0) {
+                return (0u64, 0u64);
+            }
+            let p = planes.bilinear(x, y);
+            let theta = atlas.buffers.theta[texel];
+            let psi = pixel_angle(i as u32, j as u32, 0) as f32;
+            let (a, b) = (reach / s1 * side as f32, reach / s2 * side as f32);
+            let (ct, st, cp, sp) = (theta.cos(), theta.sin(), psi.cos(), psi.sin());
+            assert!(std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"));
+            let ellipse = [
+                a * cp * ct - b * sp * st,
+                a * cp * st + b * sp * ct,
+                -a * sp * ct - b * cp * st,
+                -a * sp * st + b * cp * ct,
+            ];
+            // SAFETY: AVX2 and FMA were detected on this CPU (the benchmark needs them).
+            let count = unsafe { count_inside(planes, bilinear, &pattern, [x, y], ellipse, p, r2) };
+            (1, count)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    (cpu_seconds() - cpu, inside as f64 / texels.max(1) as f64)
 }
 
 fn main() {
@@ -60,8 +178,21 @@ fn main() {
             maps.summary.texels,
             maps.summary.mean_valid
         );
-        results.push(maps);
+        results.push((maps, cpu));
     }
+    let (fast, fast_cpu) = &results[0];
+    let drawn = fast.summary.texels as f64 * samples as f64;
+    let planes = Planes::new(&atlas);
+    for (bilinear, name) in [(true, "bilinear SoA, 12 loads"), (false, "nearest texel AoS, 1 load")] {
+        let (floor_cpu, floor_inside) = gather_floor(&atlas, &planes, bilinear, radius, samples, 512);
+        println!(
+            "gather floor ({name}): cpu {:.0} ms, {:.1} ns cpu per sample, {floor_inside:.1} inside/texel; fast / floor {:.1}x",
+            1e3 * floor_cpu,
+            1e9 * floor_cpu / drawn,
+            fast_cpu / floor_cpu
+        );
+    }
+    let results: Vec<FeatureMaps> = results.into_iter().map(|(maps, _)| maps).collect();
     if results.len() == 2 {
         let (a, b) = (&results[0].values[0], &results[1].values[0]);
         let diffs: Vec<f64> = a

@@ -152,12 +152,7 @@ struct Landing {
 impl Landing {
     #[inline(always)]
     fn new(atlas: &Atlas, centre: &Centre, domain: &Domain, points: &[DVec2]) -> Self {
-        let mut landing = Self {
-            u: [0.0; BATCH],
-            v: [0.0; BATCH],
-            area_scale: [0.0; BATCH],
-            texel: [u32::MAX; BATCH],
-        };
+        let mut landing = Self { u: [0.0; BATCH], v: [0.0; BATCH], area_scale: [0.0; BATCH], texel: [u32::MAX; BATCH] };
         let len = points.len();
         let (mut wx, mut wy) = ([0.0f32; BATCH], [0.0f32; BATCH]);
         let shift = domain.placement.shift() as f32;
@@ -190,8 +185,7 @@ impl Landing {
             let v = cv + margin * (to_uv.x_axis.y * wx[k] + to_uv.y_axis.y * wy[k]);
             let (x, y) = (u * side, v * side);
             let on_domain = x >= 0.0 && y >= 0.0 && x < side && y < side;
-            landing.texel[k] =
-                if on_domain { interior.index(x as usize, y as usize) as u32 } else { u32::MAX };
+            landing.texel[k] = if on_domain { interior.index(x as usize, y as usize) as u32 } else { u32::MAX };
             (landing.u[k], landing.v[k]) = (u, v);
             landing.area_scale[k] = margins[k] * margins[k];
         }
@@ -253,7 +247,9 @@ fn gather_batches(
                 let offset = domain.offset(points[k]);
                 let uv_area = cell_area * offset.area_scale;
                 match locate_target(atlas, centre, centre.uv + offset.uv, settings) {
-                    Located::Inside { uv, m_path, face: Some(face), .. } if kernel.patches[face as usize].chart >= 0 => {
+                    Located::Inside { uv, m_path, face: Some(face), .. }
+                        if kernel.patches[face as usize].chart >= 0 =>
+                    {
                         let uv_area = uv_area * m_path.determinant().abs();
                         kernel.accept_at(face, uv.as_vec2(), uv_area, pattern_index, out)
                     }
