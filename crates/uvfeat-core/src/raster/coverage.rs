@@ -43,7 +43,8 @@ pub struct Coverage {
     /// touches or that borders another chart, the empty space or the domain edge: every texel
     /// closer than `distance - 1` shares this texel's chart and no boundary crosses it, so a march
     /// or a walk may jump that far at once (the relocation's speed-up at large radii).
-    pub chart_distance: Vec<u16>,
+    /// Stored in blocks: the walks' long skips read it at random.
+    pub chart_distance: Blocked<u16>,
     /// The face of each texel deep enough in its chart that a parametric point in it is reached
     /// from anywhere in the chart's texels around it without crossing a boundary (chart distance
     /// at least 2, not a border texel: [`crate::relocation::interior_face`]); `u32::MAX` elsewhere.
@@ -64,16 +65,17 @@ impl Coverage {
             bary: vec![[0.0; 2]; n],
             chart: vec![-1; n],
             border_side: vec![-1; n],
-            chart_distance: Vec::new(),
+            chart_distance: Blocked::default(),
             interior_face: Blocked::default(),
             diagnostics: CoverageDiagnostics::default(),
         };
         coverage.rasterise_triangles(topology);
         coverage.rasterise_boundaries(topology);
-        coverage.chart_distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
+        let distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
+        coverage.chart_distance = Blocked::from_rows(&distance, resolution, 0);
         let interior_face: Vec<u32> = (0..n)
             .map(|t| {
-                let interior = coverage.chart_distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
+                let interior = distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
                 u32::try_from(coverage.face[t]).ok().filter(|_| interior).unwrap_or(u32::MAX)
             })
             .collect();

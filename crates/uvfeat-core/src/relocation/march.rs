@@ -60,8 +60,10 @@ fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i3
     let coverage = &atlas.coverage;
     let mut k = 0;
     loop {
-        let here = atlas.texel_at(origin + step * k as f64);
-        let skip = here.filter(|&t| coverage.chart[t] == chart).map_or(1, |t| coverage.chart_distance[t].max(2) - 1);
+        let here = atlas.texel_coordinates(origin + step * k as f64);
+        let skip = here
+            .filter(|&(i, j)| coverage.chart[j * coverage.resolution + i] == chart)
+            .map_or(1, |(i, j)| coverage.chart_distance.at(i, j).max(2) - 1);
         k += usize::from(skip);
         if k > steps {
             return None;

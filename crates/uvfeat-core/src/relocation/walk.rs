@@ -119,10 +119,11 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
     let coverage = &atlas.coverage;
     let texel_size = 1.0 / coverage.resolution as f64;
     let mut point = from;
-    let mut texel = atlas.texel_at(point).filter(|&t| coverage.chart[t] == chart)?;
+    let side = coverage.resolution;
+    let (mut i, mut j) = atlas.texel_coordinates(point).filter(|&(i, j)| coverage.chart[j * side + i] == chart)?;
     let mut skipped = false;
     loop {
-        let distance = f64::from(coverage.chart_distance[texel]);
+        let distance = f64::from(coverage.chart_distance.at(i, j));
         if distance < MIN_SKIP {
             break;
         }
@@ -133,7 +134,7 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
         point = if reaches_target { target } else { point + remaining * (safe / length) };
         // Within `distance - 1` texels every texel is of `chart`, so the texel reached needs no
         // chart check (one load fewer per step).
-        texel = atlas.texel_at(point)?;
+        (i, j) = atlas.texel_coordinates(point)?;
         skipped = true;
         if reaches_target {
             break;
@@ -142,6 +143,7 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
     if !skipped {
         return None;
     }
+    let texel = j * side + i;
     let face = u32::try_from(coverage.face[texel]).ok()?;
     let topology = &atlas.topology;
     let [b1, b2] = coverage.bary[texel].map(f64::from);
