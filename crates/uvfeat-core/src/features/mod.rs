@@ -95,6 +95,15 @@ impl Feature {
     pub fn index(self) -> usize {
         self as usize
     }
+
+    /// `true` for the features computed from the Gaussian curvature `K` (K itself, the principal
+    /// curvatures and what derives from them).
+    pub fn uses_gaussian_curvature(self) -> bool {
+        matches!(
+            self,
+            Feature::GaussianCurvature | Feature::K1 | Feature::K2 | Feature::ShapeIndex | Feature::Curvedness
+        )
+    }
 }
 
 /// Where the curvature features (H, K, k1, k2, shape index, curvedness) come from.

@@ -128,8 +128,11 @@ impl ComputeSettings {
             geodesic: self.geodesic,
             path: self.sampling,
             with_normals: self.features.contains(&Feature::BendingEnergy),
+            // The geodesic-disk K is the only estimator that reads the samples' geodesic
+            // distances; its chord sum costs 16 lookups per sample (paper mode, H alone: 8x).
             with_geodesic: self.criterion == Criterion::Geodesic
-                || self.gaussian_method == GaussianMethod::GeodesicArea,
+                || (self.gaussian_method == GaussianMethod::GeodesicArea
+                    && self.features.iter().any(|f| f.uses_gaussian_curvature())),
         }
     }
 

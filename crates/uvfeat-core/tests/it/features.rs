@@ -140,3 +140,37 @@ fn bad_settings_are_rejected_with_the_parameter_named() {
         assert!(err.contains(what), "{err}");
     }
 }
+
+/// The geodesic distances (a chord sum of 16 lookups per sample in the paper's choices) are only
+/// computed when a requested feature uses the geodesic-disk K, and leaving them out changes nothing
+/// else: H alone equals the H of a run that also asks for K.
+#[test]
+fn geodesic_distances_are_computed_only_for_the_geodesic_disk_k() {
+    use uvfeat_core::features::GaussianMethod;
+    use uvfeat_core::lookup::Lookup;
+    use uvfeat_core::relocation::Relocation;
+    use uvfeat_core::sampling::Geodesic;
+    let atlas = atlas(&torus(2.0, 0.5, 96, 48), 256);
+    let paper_like = |features: Vec<Feature>| {
+        let mut settings = ComputeSettings::new(features, 0.3);
+        settings.resolution = 48;
+        settings.gaussian_method = GaussianMethod::GeodesicArea;
+        settings.geodesic = Geodesic::ChordSum;
+        settings.lookup = Lookup::Bilinear;
+        settings.relocation = Relocation::PerChart;
+        settings
+    };
+    let alone = paper_like(vec![Feature::MeanCurvature]);
+    let with_k = paper_like(vec![Feature::MeanCurvature, Feature::GaussianCurvature]);
+    assert!(!alone.sampler().with_geodesic);
+    assert!(with_k.sampler().with_geodesic);
+    for uses_k in [Feature::K1, Feature::K2, Feature::ShapeIndex, Feature::Curvedness] {
+        assert!(paper_like(vec![uses_k]).sampler().with_geodesic, "{uses_k:?}");
+    }
+    let h_alone = FeatureMaps::compute(&atlas, &alone).unwrap();
+    let h_with_k = FeatureMaps::compute(&atlas, &with_k).unwrap();
+    let k = h_with_k.features.iter().position(|&f| f == Feature::GaussianCurvature).unwrap();
+    assert!(h_with_k.values[k].iter().filter(|v| v.is_finite()).count() > 1000, "K was computed");
+    let same = h_alone.values[0].iter().zip(&h_with_k.values[0]).all(|(a, b)| a == b || (a.is_nan() && b.is_nan()));
+    assert!(same, "H changed when the geodesic distances were left out");
+}
