@@ -12,7 +12,7 @@ mod topology;
 mod transition;
 mod weld;
 
-pub use adjacency::EdgeLink;
+pub use adjacency::{EdgeLink, WalkFace};
 pub use corners::NO_CORNER;
 pub use edges::{EdgeCounts, SideKind};
 pub use jacobian::Jacobian;

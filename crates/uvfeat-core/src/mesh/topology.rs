@@ -1,7 +1,7 @@
 //! The once-per-topology pre-processing (SPEC §1.2): everything here depends on connectivity and
 //! UVs only, so every animation frame reuses it.
 
-use super::adjacency::{face_links, EdgeLink};
+use super::adjacency::{face_links, walk_faces, WalkFace};
 use super::charts::chart_ids;
 use super::corners::corner_groups;
 use super::edges::{classify_edges, EdgeCounts, FaceSide, SideKind};
@@ -61,8 +61,9 @@ pub struct Topology {
     pub n_charts: usize,
     /// Every chart-boundary side.
     pub sides: Vec<BoundarySide>,
-    /// (n_faces) what lies across each edge of each face (for the exact triangle walk).
-    pub links: Vec<[EdgeLink; 3]>,
+    /// (n_faces) corner UVs and what lies across each edge of each face (for the exact triangle
+    /// walk).
+    pub walk_faces: Vec<WalkFace>,
     /// (n_faces) atlas corner of each face corner (`NO_CORNER` for faces without a chart).
     pub corner_groups: Vec<[u32; 3]>,
     /// Number of atlas corners.
@@ -101,7 +102,7 @@ impl Topology {
         let classes = classify_edges(&faces, &corner_uvs, &excluded);
         let (face_chart, n_charts) = chart_ids(faces.len(), &classes.interior_pairs, &excluded);
         let sides = boundary_sides(&classes.boundary, &face_chart);
-        let links = face_links(&faces, &face_chart, &sides);
+        let walk_faces = walk_faces(&corner_uvs, &face_links(&faces, &face_chart, &sides));
         let (corner_groups, n_corners) = corner_groups(&faces, &corner_uvs, &face_chart);
         let mirrored_uv_faces =
             corner_uvs.iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();
@@ -120,7 +121,7 @@ impl Topology {
             face_chart,
             n_charts,
             sides,
-            links,
+            walk_faces,
             corner_groups,
             n_corners,
             diagnostics,

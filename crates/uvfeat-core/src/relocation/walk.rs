@@ -7,7 +7,7 @@
 
 use super::{interior_face, Located};
 use crate::atlas::Atlas;
-use crate::mesh::EdgeLink;
+use crate::mesh::{EdgeLink, WalkFace};
 use glam::{DMat2, DVec2};
 
 /// Faces one walk may cross inside a chart before it is given up as lost (a guard against
@@ -36,8 +36,8 @@ enum Stop {
 /// Signed edge functions of `uv` for the three edges of a parametric triangle, positive inside
 /// (whatever the triangle's orientation).
 #[inline]
-fn edge_functions(corners: &[DVec2; 3], uv: DVec2) -> [f64; 3] {
-    let orientation = (corners[1] - corners[0]).perp_dot(corners[2] - corners[0]).signum();
+fn edge_functions(face: &WalkFace, uv: DVec2) -> [f64; 3] {
+    let (corners, orientation) = (&face.corners, f64::from(face.orientation));
     std::array::from_fn(|k| {
         let (a, b) = (corners[k], corners[(k + 1) % 3]);
         (b - a).perp_dot(uv - a) * orientation
@@ -62,9 +62,9 @@ fn walk_in_chart(
                 (face, entry, from) = (ahead, None, point);
             }
         }
-        let corners = &topology.corner_uvs[face as usize];
-        let at_target = edge_functions(corners, target);
-        let at_from = edge_functions(corners, from);
+        let record = &topology.walk_faces[face as usize];
+        let at_target = edge_functions(record, target);
+        let at_from = edge_functions(record, from);
         let mut exit: Option<(usize, f64)> = None;
         for k in 0..3 {
             if Some(k as u8) == entry || at_target[k] >= 0.0 {
@@ -80,7 +80,7 @@ fn walk_in_chart(
             return Stop::Arrived { face };
         };
         from += (target - from) * t;
-        match topology.links[face as usize][k] {
+        match record.link(k) {
             EdgeLink::Face { face: next, local } => {
                 face = next;
                 entry = Some(local);
@@ -147,7 +147,7 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
     let face = u32::try_from(coverage.face[texel]).ok()?;
     let topology = &atlas.topology;
     let [b1, b2] = coverage.bary[texel].map(f64::from);
-    let corners = topology.corner_uvs[face as usize];
+    let corners = topology.walk_faces[face as usize].corners;
     let under_centre = corners[0] * (1.0 - b1 - b2) + corners[1] * b1 + corners[2] * b2;
     match walk_in_chart(atlas, face, None, under_centre, point, false) {
         Stop::Arrived { face } => Some((face, point)),
