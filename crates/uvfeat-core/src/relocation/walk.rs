@@ -45,19 +45,20 @@ fn edge_functions(face: &WalkFace, uv: DVec2) -> [f64; 3] {
 }
 
 /// Walks from `from` (in `face`, entered through edge `entry`) towards `target` inside one chart;
-/// with `skipping`, every few faces it tries to jump ahead over texels no boundary touches.
+/// from face `first_skip` on, every few faces it tries to jump ahead over texels no boundary
+/// touches (`None`: never).
 fn walk_in_chart(
     atlas: &Atlas,
     mut face: u32,
     mut entry: Option<u8>,
     mut from: DVec2,
     target: DVec2,
-    skipping: bool,
+    first_skip: Option<usize>,
 ) -> Stop {
     let topology = &atlas.topology;
     let chart = topology.face_chart[face as usize];
     for step in 0..MAX_FACES {
-        if skipping && step % SKIP_EVERY == 0 {
+        if first_skip.is_some_and(|first| step >= first && (step - first) % SKIP_EVERY == 0) {
             if let Some((ahead, point)) = skip_ahead(atlas, chart, from, target) {
                 (face, entry, from) = (ahead, None, point);
             }
@@ -101,7 +102,7 @@ pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
     let topology = &atlas.topology;
     let corners = topology.corner_uvs[face as usize];
     let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
-    match walk_in_chart(atlas, face, None, centroid, uv, false) {
+    match walk_in_chart(atlas, face, None, centroid, uv, None) {
         Stop::Arrived { face } => Some(Home { face, point: uv }),
         Stop::Boundary { side, point } => Some(Home { face: topology.sides[side as usize].face, point }),
         Stop::Lost => None,
@@ -149,7 +150,7 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
     let [b1, b2] = coverage.bary[texel].map(f64::from);
     let corners = topology.walk_faces[face as usize].corners;
     let under_centre = corners[0] * (1.0 - b1 - b2) + corners[1] * b1 + corners[2] * b2;
-    match walk_in_chart(atlas, face, None, under_centre, point, false) {
+    match walk_in_chart(atlas, face, None, under_centre, point, None) {
         Stop::Arrived { face } => Some((face, point)),
         Stop::Boundary { .. } | Stop::Lost => None,
     }
@@ -171,7 +172,9 @@ pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Locate
     let mut m_path = DMat2::IDENTITY;
     let mut jumps = 0;
     loop {
-        match walk_in_chart(atlas, face, entry, from, target, true) {
+        // Right after a seam the walk stands on the boundary, where no skip is possible.
+        let first_skip = if jumps == 0 { 0 } else { SKIP_EVERY };
+        match walk_in_chart(atlas, face, entry, from, target, Some(first_skip)) {
             Stop::Arrived { face } => {
                 let chart = topology.face_chart[face as usize];
                 return Located::Inside { chart, uv: target, m_path, jumps, face: Some(face) };
