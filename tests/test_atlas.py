@@ -72,6 +72,7 @@ def test_update_recomputes_the_buffers_and_keeps_the_coverage(torus_atlas):
     mesh = uvfeat.shapes.torus(2.0, 0.5, 64, 32)
     atlas = uvfeat.Atlas(mesh, 256)
     chart_before = atlas.chart.copy()
+    np.testing.assert_allclose(atlas.position, torus_atlas.position)  # buffers read before the update
     atlas.update(mesh.positions * 2.0 + [1.0, 0, 0])
     covered = chart_before >= 0
     np.testing.assert_allclose(atlas.position[covered], torus_atlas.position[covered] * 2 + [1, 0, 0], atol=1e-5)

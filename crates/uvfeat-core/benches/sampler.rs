@@ -31,7 +31,7 @@ struct Planes {
 
 impl Planes {
     fn new(atlas: &Atlas) -> Self {
-        let position = &atlas.buffers.position;
+        let position = &atlas.buffers().position;
         Self {
             side: atlas.resolution(),
             xyz: [0, 1, 2].map(|c| position.iter().map(|p| p[c]).collect()),
@@ -113,12 +113,12 @@ fn gather_floor(
                 (j as f32 + 0.5) / compute_side as f32 * side as f32,
             );
             let texel = y as usize * side + x as usize;
-            let [s1, s2] = atlas.buffers.sigma[texel];
+            let [s1, s2] = atlas.buffers().sigma[texel];
             if !(s2 > 0.0) {
                 return (0u64, 0u64);
             }
             let p = planes.bilinear(x, y);
-            let theta = atlas.buffers.theta[texel];
+            let theta = atlas.buffers().theta[texel];
             let psi = pixel_angle(i as u32, j as u32, 0) as f32;
             let (a, b) = (reach / s1 * side as f32, reach / s2 * side as f32);
             let (ct, st, cp, sp) = (theta.cos(), theta.sin(), psi.cos(), psi.sin());

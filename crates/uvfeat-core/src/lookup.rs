@@ -55,7 +55,7 @@ impl Lookup {
 /// (weights renormalised); the nearest texel of `chart` where none of the four belongs to it.
 fn bilinear_point(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<SurfacePoint> {
     let coverage = &atlas.coverage;
-    let buffers = &atlas.buffers;
+    let buffers = atlas.buffers();
     let n = atlas.resolution() as i64;
     let (x, y) = (uv.x * n as f64 - 0.5, uv.y * n as f64 - 0.5);
     let (i0, j0) = (floor(x), floor(y));

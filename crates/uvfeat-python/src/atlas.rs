@@ -84,23 +84,23 @@ impl PyAtlas {
 
     #[getter]
     fn position<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.vector_buffer(py, &self.inner.buffers.position)
+        self.vector_buffer(py, &self.inner.buffers().position)
     }
 
     #[getter]
     fn normal<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.vector_buffer(py, &self.inner.buffers.normal)
+        self.vector_buffer(py, &self.inner.buffers().normal)
     }
 
     #[getter]
     fn sigma<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
         let r = self.inner.resolution();
-        to_numpy(py, flatten(&self.inner.buffers.sigma), &[r, r, 2])
+        to_numpy(py, flatten(&self.inner.buffers().sigma), &[r, r, 2])
     }
 
     #[getter]
     fn theta<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
-        self.texel_map(py, self.inner.buffers.theta.clone())
+        self.texel_map(py, self.inner.buffers().theta.clone())
     }
 
     #[getter]

@@ -6,6 +6,7 @@ use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::error::Result;
 use crate::features::{CurvatureMethod, Feature};
+use crate::lookup::Lookup;
 use crate::sampling::Placement;
 use glam::DVec2;
 use rayon::prelude::*;
@@ -83,6 +84,10 @@ impl FeatureMaps {
         settings.validate()?;
         let w = settings.resolution;
         let patterns = Patterns::new(settings);
+        if settings.lookup == Lookup::Bilinear {
+            // Evaluated once here rather than by the first worker that looks a sample up.
+            atlas.buffers();
+        }
         let order = tiled_order(w);
         let results: Vec<PixelResult> = order
             .par_iter()

@@ -50,13 +50,12 @@ impl GeometryBuffers {
             sigma: vec![[f32::NAN; 2]; n],
             theta: vec![f32::NAN; n],
         };
-        buffers.refresh(topology, coverage, frame, precision);
+        buffers.fill(topology, coverage, frame, precision);
         buffers
     }
 
-    /// Overwrites the covered texels for a new frame of the same coverage (empty texels keep
-    /// their NaN), so animation frames allocate nothing.
-    pub fn refresh(&mut self, topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) {
+    /// Writes the covered texels (empty texels keep their NaN).
+    fn fill(&mut self, topology: &Topology, coverage: &Coverage, frame: &Frame, precision: Precision) {
         let row = coverage.resolution;
         self.position
             .par_chunks_mut(row)

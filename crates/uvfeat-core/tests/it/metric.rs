@@ -28,9 +28,9 @@ fn affine_plane_distortion_is_exact_including_the_angle() {
         if atlas.coverage.chart[t] < 0 {
             continue;
         }
-        let [x1, x2] = atlas.buffers.sigma[t].map(f64::from);
+        let [x1, x2] = atlas.buffers().sigma[t].map(f64::from);
         assert!((x1 - s1).abs() < 1e-6 * s1 && (x2 - s2).abs() < 1e-6 * s1, "sigma {x1} {x2} vs {s1} {s2}");
-        assert!((f64::from(atlas.buffers.theta[t]) - theta).abs() < 1e-6);
+        assert!((f64::from(atlas.buffers().theta[t]) - theta).abs() < 1e-6);
         // The eigenvector of sigma_1 is the direction of largest stretch.
         let axis = DVec2::from_angle(theta);
         assert!(((a[0] * axis.x + a[1] * axis.y).length() - s1).abs() < 1e-9);
@@ -94,7 +94,7 @@ fn sphere_stretch_axis_follows_the_parallels_below_sixty_degrees() {
             continue;
         }
         let lat = PI * ((atlas.texel_centre(t).y - MARGIN) / SCALE - 0.5);
-        let theta = f64::from(atlas.buffers.theta[t]).abs();
+        let theta = f64::from(atlas.buffers().theta[t]).abs();
         if lat.cos() > 0.6 {
             assert!(theta < 0.05, "lat {lat}: theta {theta}");
         } else if lat.cos() < 0.4 {

@@ -16,7 +16,7 @@ fn max_position_error(atlas: &Atlas) -> f64 {
             continue; // gutter texel: shows the closest edge point, checked in the seam tests
         }
         let exact = interpolate(atlas, face, b);
-        let stored = DVec3::from_array(atlas.buffers.position[t].map(f64::from));
+        let stored = DVec3::from_array(atlas.buffers().position[t].map(f64::from));
         worst = worst.max(exact.distance(stored));
     }
     worst
