@@ -15,11 +15,11 @@ from __future__ import annotations
 
 import argparse
 import time
-import warnings
 
 import numpy as np
 
 import uvfeat
+from bench_sampler import tori  # the same two tori, run from this folder
 
 FEATURES = ["mean_curvature", "gaussian_curvature"]
 
@@ -35,15 +35,6 @@ def torus_truth(positions: np.ndarray, major: float = 2.0, minor: float = 0.5) -
     h = (major + 2 * minor * cos_v) / (2 * minor * (major + minor * cos_v))
     k = cos_v / (minor * (major + minor * cos_v))
     return h, k
-
-
-def tori() -> list[uvfeat.Mesh]:
-    t = uvfeat.shapes.torus(2.0, 0.5, 320, 160)
-    single = uvfeat.Mesh(t.positions, t.faces, uvs=t.uvs, uv_faces=t.uv_faces, name="torus 102K, lat-long")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        multi = uvfeat.Mesh(t.positions, t.faces, name="torus 102K, xatlas").with_atlas()
-    return [single, multi]
 
 
 def main() -> None:

@@ -62,27 +62,27 @@ pub fn gather(
     settings: &SamplerSettings,
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
+    let domain = Domain::new(centre, placement, reach, settings);
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
         // SAFETY: the CPU has the features `gather_avx2` is compiled for (checked just above).
-        return unsafe { gather_avx2(atlas, centre, pattern, placement, reach, settings, out) };
+        return unsafe { gather_avx2(atlas, centre, pattern, &domain, out) };
     }
-    gather_batches(atlas, centre, pattern, placement, reach, settings, out)
+    gather_batches(atlas, centre, pattern, &domain, out)
 }
 
-/// [`gather_batches`] compiled for AVX2 and FMA.
+/// [`gather_batches`] compiled for AVX2 and FMA (its signature, so that the whole of it is inlined
+/// here and compiled with these features; a closure passed to a generic wrapper was not).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 unsafe fn gather_avx2(
     atlas: &Atlas,
     centre: &Centre,
     pattern: &[DVec2],
-    placement: Placement,
-    reach: &Reach,
-    settings: &SamplerSettings,
+    domain: &Domain,
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
-    gather_batches(atlas, centre, pattern, placement, reach, settings, out)
+    gather_batches(atlas, centre, pattern, domain, out)
 }
 
 /// A centre as the patches see it: positions relative to the patches' origin, in f32.
@@ -199,11 +199,10 @@ fn gather_batches(
     atlas: &Atlas,
     centre: &Centre,
     pattern: &[DVec2],
-    placement: Placement,
-    reach: &Reach,
-    settings: &SamplerSettings,
+    domain: &Domain,
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
+    let settings = domain.settings;
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let patches = &atlas.patches;
     let interior = &atlas.coverage.interior_face;
@@ -217,11 +216,10 @@ fn gather_batches(
         inner: (1e-6 * r) * (1e-6 * r),
         settings,
     };
-    let domain = Domain::new(centre, placement, reach, settings);
     let mut counts = SampleCounts::default();
     for (batch, points) in pattern.chunks(BATCH).enumerate() {
         let first = batch * BATCH;
-        let landing = Landing::new(atlas, centre, &domain, points);
+        let landing = Landing::new(atlas, centre, domain, points);
         let mut faces = [u32::MAX; BATCH];
         for (face, &texel) in faces.iter_mut().zip(&landing.texel[..points.len()]) {
             if let Some(&interior) = interior.get(texel as usize) {

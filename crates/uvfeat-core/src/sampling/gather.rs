@@ -137,25 +137,27 @@ pub(super) fn offsets<'a>(
     pattern: &'a [DVec2],
     placement: Placement,
     reach: &'a Reach,
-    settings: &SamplerSettings,
+    settings: &'a SamplerSettings,
 ) -> impl Iterator<Item = Offset> + 'a {
     let domain = Domain::new(centre, placement, reach, settings);
     pattern.iter().map(move |&disk| domain.offset(disk))
 }
 
-/// The sampling domain of one centre: the pattern's placement, the reach and the metric ellipse.
+/// The sampling domain of one centre: the pattern's placement, the reach and the metric ellipse,
+/// with the sampler's settings.
 pub(super) struct Domain<'a> {
     pub ellipse: DMat2,
     pub placement: Placement,
     pub reach: &'a Reach,
     /// The margin of every direction when the reach is uniform.
     pub uniform: Option<f64>,
+    pub settings: &'a SamplerSettings,
 }
 
 impl<'a> Domain<'a> {
-    pub fn new(centre: &Centre, placement: Placement, reach: &'a Reach, settings: &SamplerSettings) -> Self {
+    pub fn new(centre: &Centre, placement: Placement, reach: &'a Reach, settings: &'a SamplerSettings) -> Self {
         let uniform = reach.is_uniform().then(|| reach.margin(0));
-        Self { ellipse: unit_ellipse(centre, settings), placement, reach, uniform }
+        Self { ellipse: unit_ellipse(centre, settings), placement, reach, uniform, settings }
     }
 
     /// The offset of the pattern point `disk`.
