@@ -114,7 +114,7 @@ fn gather_floor(
             );
             let texel = y as usize * side + x as usize;
             let [s1, s2] = atlas.buffers().sigma[texel];
-            if !(s2 > 0.0) {
+            if s2.is_nan() || s2 <= 0.0 {
                 return (0u64, 0u64);
             }
             let p = planes.bilinear(x, y);

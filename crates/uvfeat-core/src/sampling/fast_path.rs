@@ -97,20 +97,36 @@ struct Kernel<'a> {
     settings: &'a SamplerSettings,
 }
 
+/// A surface point evaluated on a patch: its offset `local` from the patch's `uv0`, and
+/// `relative = q - p` with its squared length.
+#[derive(Debug, Clone, Copy, Default)]
+struct Evaluated {
+    local: Vec2,
+    relative: Vec3,
+    squared: f32,
+}
+
+impl Evaluated {
+    #[inline(always)]
+    fn new(patch: &FacePatch, uv: Vec2, p: Vec3) -> Self {
+        let local = uv - Vec2::from_array(patch.uv0);
+        let relative = patch.position_at(local) - p;
+        Self { local, relative, squared: relative.length_squared() }
+    }
+}
+
 impl Kernel<'_> {
-    /// Appends the sample at offset `local` of `patch`, at `relative = q - p` (squared length
-    /// `squared`), when it lies in the ball; `true` if it did.
+    /// Appends the sample `point` of `patch` when it lies in the ball; `true` if it did.
     #[inline(always)]
     fn accept(
         &self,
         patch: &FacePatch,
-        local: Vec2,
-        relative: Vec3,
-        squared: f32,
+        point: Evaluated,
         uv_area: f64,
         pattern_index: u32,
         out: &mut Vec<Sample>,
     ) -> bool {
+        let Evaluated { local, relative, squared } = point;
         if !(squared > self.inner && squared < self.outer) {
             return false;
         }
@@ -133,9 +149,7 @@ impl Kernel<'_> {
     #[inline(always)]
     fn accept_at(&self, face: u32, uv: Vec2, uv_area: f64, pattern_index: u32, out: &mut Vec<Sample>) -> bool {
         let patch = &self.patches[face as usize];
-        let local = uv - Vec2::from_array(patch.uv0);
-        let relative = patch.position_at(local) - self.p;
-        self.accept(patch, local, relative, relative.length_squared(), uv_area, pattern_index, out)
+        self.accept(patch, Evaluated::new(patch, uv, self.p), uv_area, pattern_index, out)
     }
 }
 
@@ -226,17 +240,13 @@ fn gather_batches(
                 *face = interior;
             }
         }
-        let mut relative = [Vec3::ZERO; BATCH];
-        let mut squared = [0.0f32; BATCH];
-        let mut local = [Vec2::ZERO; BATCH];
+        let mut evaluated = [Evaluated::default(); BATCH];
         for k in 0..points.len() {
             let Some(patch) = kernel.patches.get(faces[k] as usize).filter(|patch| patch.chart == centre.chart) else {
                 faces[k] = u32::MAX;
                 continue;
             };
-            local[k] = Vec2::new(landing.u[k], landing.v[k]) - Vec2::from_array(patch.uv0);
-            relative[k] = patch.position_at(local[k]) - kernel.p;
-            squared[k] = relative[k].length_squared();
+            evaluated[k] = Evaluated::new(patch, Vec2::new(landing.u[k], landing.v[k]), kernel.p);
         }
         for k in 0..points.len() {
             let pattern_index = (first + k) as u32;
@@ -259,7 +269,7 @@ fn gather_batches(
             } else {
                 let patch = &kernel.patches[faces[k] as usize];
                 let uv_area = cell_area * landing.area_scale[k];
-                kernel.accept(patch, local[k], relative[k], squared[k], uv_area, pattern_index, out)
+                kernel.accept(patch, evaluated[k], uv_area, pattern_index, out)
             };
             counts.valid += u32::from(accepted);
         }
