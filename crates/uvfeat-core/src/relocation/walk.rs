@@ -128,9 +128,12 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
         if distance < MIN_SKIP {
             break;
         }
+        // The free texels form a square around the texel: a step may move `distance - 2` texels
+        // along each axis, so its length is measured in the maximum norm (up to 1.41x longer
+        // steps than a Euclidean bound on diagonal segments).
         let safe = (distance - 2.0) * texel_size;
         let remaining = target - point;
-        let length = remaining.length();
+        let length = remaining.abs().max_element();
         let reaches_target = length <= safe;
         point = if reaches_target { target } else { point + remaining * (safe / length) };
         // Within `distance - 1` texels every texel is of `chart`, so the texel reached needs no
