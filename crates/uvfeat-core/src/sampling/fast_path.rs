@@ -18,8 +18,6 @@
 use super::gather::{locate_target, located_sample, Domain};
 use super::geodesic::{arc_distance, Geodesic};
 use super::neighbourhood::{unit_ellipse_area, Centre, Sample, SampleCounts, SamplerSettings};
-use super::pattern::Placement;
-use super::reach::Reach;
 use crate::atlas::Atlas;
 use crate::lookup::Lookup;
 use crate::raster::{FacePatch, Precision};
@@ -52,37 +50,38 @@ pub fn applies(atlas: &Atlas, settings: &SamplerSettings) -> bool {
 /// system (one point after the other, a point's loads waited on the previous point's).
 const BATCH: usize = 64;
 
-/// As [`super::gather`], with interior samples on the fast path.
-pub fn gather(
-    atlas: &Atlas,
-    centre: &Centre,
-    pattern: &[DVec2],
-    placement: Placement,
-    reach: &Reach,
-    settings: &SamplerSettings,
-    out: &mut Vec<Sample>,
-) -> SampleCounts {
-    let domain = Domain::new(centre, placement, reach, settings);
-    #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-        // SAFETY: the CPU has the features `gather_avx2` is compiled for (checked just above).
-        return unsafe { gather_avx2(atlas, centre, pattern, &domain, out) };
-    }
-    gather_batches(atlas, centre, pattern, &domain, out)
+/// One neighbourhood to gather: the atlas, its centre, the shared pattern and the centre's
+/// sampling domain.
+struct Gathering<'a> {
+    atlas: &'a Atlas,
+    centre: &'a Centre,
+    pattern: &'a [DVec2],
+    domain: &'a Domain<'a>,
 }
 
-/// [`gather_batches`] compiled for AVX2 and FMA (its signature, so that the whole of it is inlined
-/// here and compiled with these features; a closure passed to a generic wrapper was not).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn gather_avx2(
+/// As [`super::gather`] over `domain`, with interior samples on the fast path.
+pub(super) fn gather(
     atlas: &Atlas,
     centre: &Centre,
     pattern: &[DVec2],
     domain: &Domain,
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
-    gather_batches(atlas, centre, pattern, domain, out)
+    let gathering = Gathering { atlas, centre, pattern, domain };
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+        // SAFETY: the CPU has the features `gather_avx2` is compiled for (checked just above).
+        return unsafe { gather_avx2(&gathering, out) };
+    }
+    gather_batches(&gathering, out)
+}
+
+/// [`gather_batches`] compiled for AVX2 and FMA: a function of its own, so that the whole of it is
+/// inlined here and compiled with these features (a closure passed to a generic wrapper was not).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn gather_avx2(gathering: &Gathering, out: &mut Vec<Sample>) -> SampleCounts {
+    gather_batches(gathering, out)
 }
 
 /// A centre as the patches see it: positions relative to the patches' origin, in f32.
@@ -209,13 +208,8 @@ impl Landing {
 
 /// The gathering of the fast path, batch after batch of [`BATCH`] pattern points.
 #[inline(always)]
-fn gather_batches(
-    atlas: &Atlas,
-    centre: &Centre,
-    pattern: &[DVec2],
-    domain: &Domain,
-    out: &mut Vec<Sample>,
-) -> SampleCounts {
+fn gather_batches(gathering: &Gathering, out: &mut Vec<Sample>) -> SampleCounts {
+    let Gathering { atlas, centre, pattern, domain } = *gathering;
     let settings = domain.settings;
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let patches = &atlas.patches;

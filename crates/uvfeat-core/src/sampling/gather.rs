@@ -73,36 +73,23 @@ pub fn gather(
     if settings.relocation == Relocation::PerChart {
         return gather_per_chart(atlas, centre, pattern, placement, reach, settings, out);
     }
+    let domain = Domain::new(centre, placement, reach, settings);
     if fast_path::applies(atlas, settings) {
-        return fast_path::gather(atlas, centre, pattern, placement, reach, settings, out);
+        return fast_path::gather(atlas, centre, pattern, &domain, out);
     }
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let mut counts = SampleCounts::default();
-    for (pattern_index, offset) in offsets(centre, pattern, placement, reach, settings).enumerate() {
+    for (pattern_index, &disk) in pattern.iter().enumerate() {
+        let offset = domain.offset(disk);
+        let located = locate_target(atlas, centre, centre.uv + offset.uv, settings);
         let uv_area = cell_area * offset.area_scale;
-        exact_sample(atlas, centre, centre.uv + offset.uv, uv_area, pattern_index as u32, settings, out, &mut counts);
+        located_sample(atlas, centre, located, uv_area, pattern_index as u32, settings, out, &mut counts);
     }
     counts
 }
 
-/// Relocates, looks up and tests one pattern point at parametric `target`, whose cell stands for
-/// `uv_area` of the centre's chart, and counts what happened to it.
-#[allow(clippy::too_many_arguments)]
-fn exact_sample(
-    atlas: &Atlas,
-    centre: &Centre,
-    target: DVec2,
-    uv_area: f64,
-    pattern_index: u32,
-    settings: &SamplerSettings,
-    out: &mut Vec<Sample>,
-    counts: &mut SampleCounts,
-) {
-    let located = locate_target(atlas, centre, target, settings);
-    located_sample(atlas, centre, located, uv_area, pattern_index, settings, out, counts);
-}
-
-/// Looks up and tests one located pattern point (see [`exact_sample`]).
+/// Looks up and tests one located pattern point, whose cell stands for `uv_area` of the centre's
+/// chart, and counts what happened to it.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn located_sample(
     atlas: &Atlas,

@@ -68,7 +68,7 @@ impl Placement {
     #[inline]
     pub fn place(&self, disk: DVec2) -> DVec2 {
         let area_radius = disk.length_squared();
-        let shifted = self.placed_area_radius(disk);
+        let shifted = self.shifted(area_radius);
         let scale = if area_radius > 0.0 { (shifted / area_radius).sqrt() } else { 0.0 };
         self.turn * (disk * scale)
     }
@@ -76,9 +76,14 @@ impl Placement {
     /// `|place(disk)|^2`, the shifted area radius, without the square root and the turn.
     #[inline]
     pub fn placed_area_radius(&self, disk: DVec2) -> f64 {
-        // frac(x) for x in [0, 2) (a unit-disk point plus a shift below 1), without the library
-        // call `fract` compiles to on plain x86-64; the same value.
-        let x = disk.length_squared() + self.shift;
+        self.shifted(disk.length_squared())
+    }
+
+    /// `frac(area_radius + shift)` for a unit-disk point (the sum is in `[0, 2)`), without the
+    /// library call `fract` compiles to on plain x86-64; the same value.
+    #[inline]
+    fn shifted(&self, area_radius: f64) -> f64 {
+        let x = area_radius + self.shift;
         if x >= 1.0 {
             x - 1.0
         } else {
