@@ -25,6 +25,7 @@ import numpy as np
 import trimesh
 
 import uvfeat
+from uvfeat.unwrap import xatlas_uvs
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 # (label, ChartOptions overrides, PackOptions overrides). max_cost bounds how far a chart may grow
@@ -38,24 +39,6 @@ OPTION_SETS = [
     ("max_cost 8", {"max_cost": 8.0}, {}),
     ("max_cost 16", {"max_cost": 16.0}, {}),
 ]
-
-
-def unwrap_with(positions, faces, chart_overrides: dict, pack_overrides: dict) -> tuple[np.ndarray, np.ndarray]:
-    import xatlas
-
-    atlas = xatlas.Atlas()
-    atlas.add_mesh(positions.astype(np.float32), faces.astype(np.uint32))
-    chart = xatlas.ChartOptions()
-    for name, value in chart_overrides.items():
-        setattr(chart, name, value)
-    pack = xatlas.PackOptions()
-    pack.resolution, pack.padding, pack.bilinear = 1024, 4, True
-    for name, value in pack_overrides.items():
-        setattr(pack, name, value)
-    atlas.generate(chart, pack)
-    vmapping, indices, uvs = atlas[0]
-    assert np.array_equal(vmapping[indices], faces), "xatlas changed the faces"
-    return uvs.astype(np.float64), indices.astype(np.int64)
 
 
 def percent_ae(values: np.ndarray, truth: np.ndarray) -> float:
@@ -99,7 +82,8 @@ def main() -> None:
             if args.only and label not in args.only.split(","):
                 continue
             start = time.perf_counter()
-            uvs, uv_faces = unwrap_with(positions, faces, chart_overrides, pack_overrides)
+            uvs, uv_faces = xatlas_uvs(positions, faces, cache=False, chart_options=chart_overrides,
+                                        pack_options=pack_overrides)
             unwrap_s = time.perf_counter() - start
             mesh = uvfeat.Mesh(positions, faces, uvs, uv_faces)
             start = time.perf_counter()

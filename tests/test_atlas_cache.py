@@ -72,3 +72,12 @@ def test_an_unwritable_cache_warns_and_still_returns_the_atlas(tmp_path, sphere,
     with pytest.warns(RuntimeWarning, match="atlas cache"):
         mesh = sphere.with_atlas(resolution=256)
     assert mesh.n_charts > 1
+
+
+def test_xatlas_options_are_passed_through_and_key_the_cache(cache, sphere):
+    default = unwrap.xatlas_uvs(sphere.positions, sphere.faces, resolution=256)
+    rotated = unwrap.xatlas_uvs(sphere.positions, sphere.faces, resolution=256, pack_options={"rotate_charts": False})
+    assert len(list(cache.glob("*.npz"))) == 2
+    assert default[1].shape == rotated[1].shape
+    with pytest.raises(ValueError, match="no option 'max_cots'"):
+        unwrap.xatlas_uvs(sphere.positions, sphere.faces, chart_options={"max_cots": 4.0}, cache=False)

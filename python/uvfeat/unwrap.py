@@ -34,7 +34,8 @@ def cache_dir() -> Path | None:
 
 
 def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 1024, padding: int = 4,
-               max_chart_area: float = 0.0, cache: bool = True) -> tuple[np.ndarray, np.ndarray]:
+               max_chart_area: float = 0.0, cache: bool = True, chart_options: dict | None = None,
+               pack_options: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Charts and packs the mesh with xatlas.
 
     Parameters
@@ -51,6 +52,9 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
         give more charts.
     cache : bool
         Read and write the on-disk atlas cache (see the module's documentation).
+    chart_options, pack_options : dict, optional
+        Further fields of xatlas's ``ChartOptions`` and ``PackOptions`` by name (for example
+        ``{"max_cost": 4.0}``, ``{"bruteForce": True}``); an unknown name raises ``ValueError``.
 
     Returns
     -------
@@ -61,7 +65,10 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
 
     positions = np.ascontiguousarray(positions, dtype=np.float64)
     faces = np.ascontiguousarray(faces, dtype=np.int64)
-    options = (int(resolution), int(padding), float(max_chart_area))
+    chart = {"max_chart_area": float(max_chart_area)} if max_chart_area > 0 else {}
+    chart.update(chart_options or {})
+    pack = {"resolution": int(resolution), "padding": int(padding), "bilinear": True, **(pack_options or {})}
+    options = (sorted(chart.items()), sorted(pack.items()))
     folder = cache_dir() if cache else None
     path = None
     if folder is not None:
@@ -69,29 +76,31 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
         cached = _read_cached(path, len(faces))
         if cached is not None:
             return cached
-    uvs, uv_faces = _unwrap(xatlas, positions, faces, *options)
+    uvs, uv_faces = _unwrap(xatlas, positions, faces, chart, pack)
     if path is not None:
         _write_cached(path, uvs, uv_faces)
     return uvs, uv_faces
 
 
-def _unwrap(xatlas, positions: np.ndarray, faces: np.ndarray, resolution: int, padding: int,
-            max_chart_area: float) -> tuple[np.ndarray, np.ndarray]:
+def _unwrap(xatlas, positions: np.ndarray, faces: np.ndarray, chart: dict, pack: dict) -> tuple[np.ndarray, np.ndarray]:
     atlas = xatlas.Atlas()
     atlas.add_mesh(positions.astype(np.float32), np.ascontiguousarray(faces, dtype=np.uint32))
-    chart_options = xatlas.ChartOptions()
-    if max_chart_area > 0:
-        chart_options.max_chart_area = max_chart_area
-    pack_options = xatlas.PackOptions()
-    pack_options.resolution = resolution
-    pack_options.padding = padding
-    pack_options.bilinear = True
+    chart_options, pack_options = _options(xatlas.ChartOptions(), chart), _options(xatlas.PackOptions(), pack)
     atlas.generate(chart_options, pack_options)
     vmapping, indices, uvs = atlas[0]
     if len(indices) != len(faces) or not np.array_equal(vmapping[indices], faces):
         raise InvalidMeshError("xatlas changed the faces of the mesh (degenerate or non-manifold input?); "
                                "clean the mesh or provide UVs")
     return np.ascontiguousarray(uvs, dtype=np.float64), np.ascontiguousarray(indices, dtype=np.int64)
+
+
+def _options(options, fields: dict):
+    """xatlas's ``options`` object with ``fields`` set; an unknown field name is an error."""
+    for name, value in fields.items():
+        if not hasattr(options, name):
+            raise ValueError(f"xatlas {type(options).__name__} has no option {name!r}")
+        setattr(options, name, value)
+    return options
 
 
 def _cache_key(positions: np.ndarray, faces: np.ndarray, options: tuple, xatlas) -> str:
