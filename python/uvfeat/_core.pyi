@@ -1,0 +1,180 @@
+"""Type stubs of the native module (crates/uvfeat-python): the Rust engine behind the package.
+Users call the Python classes (uvfeat.Atlas, uvfeat.Mesh, ...), which wrap these."""
+
+from collections.abc import Sequence
+from typing import Any, Optional, final
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = [
+    "__version__",
+    "Topology",
+    "Atlas",
+    "shape",
+    "buffer_bytes",
+    "ComputeSettings",
+    "FeatureMaps",
+    "compute_settings",
+    "compute_maps",
+    "neighbourhood_tile_arrays",
+    "ReferenceMesh",
+]
+
+__version__: str
+
+_Matrix = tuple[tuple[float, float], tuple[float, float]]
+_UV = Sequence[float]
+
+def buffer_bytes(resolution: int) -> int:
+    """Bytes the geometry buffers of a ``resolution``² atlas take."""
+
+def shape(
+    name: str, sizes: list[float], counts: list[int], mirrored: bool = False
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]]:
+    """Analytic mesh by name: ``(positions, faces, uvs, uv_faces)``."""
+
+@final
+class Topology:
+    """Welded connectivity, charts, seams and sides of a UV-mapped mesh (built once)."""
+
+    def __new__(
+        cls,
+        positions: NDArray[np.float64],
+        faces: NDArray[np.int64],
+        uvs: NDArray[np.float64],
+        uv_faces: NDArray[np.int64],
+        weld_tolerance: float = 0.0,
+    ) -> Topology: ...
+    @property
+    def n_charts(self) -> int: ...
+    @property
+    def n_geometric_vertices(self) -> int: ...
+    @property
+    def vertex_ids(self) -> NDArray[np.int64]: ...
+    @property
+    def face_chart(self) -> NDArray[np.int32]: ...
+    @property
+    def diagnostics(self) -> dict[str, int]: ...
+
+@final
+class Atlas:
+    """The rasterised atlas: per-texel buffers and per-frame quantities."""
+
+    def __new__(
+        cls,
+        topology: Topology,
+        positions: NDArray[np.float64],
+        resolution: int = 1024,
+        precision: str = "f32",
+        memory_budget: int = ...,
+    ) -> Atlas: ...
+    def update(self, positions: NDArray[np.float64]) -> None: ...
+    @property
+    def resolution(self) -> int: ...
+    @property
+    def precision(self) -> str: ...
+    @property
+    def position(self) -> NDArray[Any]: ...
+    @property
+    def normal(self) -> NDArray[Any]: ...
+    @property
+    def sigma(self) -> NDArray[np.float32]: ...
+    @property
+    def theta(self) -> NDArray[np.float32]: ...
+    @property
+    def chart(self) -> NDArray[np.int32]: ...
+    @property
+    def face(self) -> NDArray[np.int32]: ...
+    @property
+    def border_side(self) -> NDArray[np.int32]: ...
+    @property
+    def border(self) -> NDArray[np.bool_]: ...
+    @property
+    def adjacent_chart(self) -> NDArray[np.int32]: ...
+    @property
+    def diagnostics(self) -> dict[str, Any]: ...
+    def locate(
+        self, start: _UV, chart: int, target: _UV, max_jumps: int = 32
+    ) -> tuple[str, int, Optional[tuple[float, float]], Optional[_Matrix], int]: ...
+    def cross_seam(self, uv: _UV, chart: int) -> Optional[tuple[int, tuple[float, float], _Matrix, int]]: ...
+    def seam_map(self, side: int) -> Optional[tuple[tuple[float, float], tuple[float, float], _Matrix]]: ...
+    def reverse_side(self, side: int) -> int: ...
+    def surface_point(
+        self, uv: _UV, chart: int
+    ) -> Optional[tuple[tuple[float, float, float], tuple[float, float, float], int]]: ...
+
+@final
+class ComputeSettings:
+    """Validated settings of a feature computation (built by :func:`compute_settings`)."""
+
+@final
+class FeatureMaps:
+    """The feature maps of one computation over the computation texture."""
+
+    @property
+    def resolution(self) -> int: ...
+    @property
+    def features(self) -> list[str]: ...
+    def values(self, k: int) -> NDArray[np.float32]: ...
+    def standard_errors(self, k: int) -> Optional[NDArray[np.float32]]: ...
+    @property
+    def chart(self) -> NDArray[np.int32]: ...
+    @property
+    def n_valid(self) -> NDArray[np.uint32]: ...
+    @property
+    def n_missing(self) -> NDArray[np.uint32]: ...
+    @property
+    def n_border(self) -> NDArray[np.uint32]: ...
+    @property
+    def second_stage(self) -> NDArray[np.bool_]: ...
+    @property
+    def principal_directions(self) -> Optional[NDArray[np.float32]]: ...
+    @property
+    def fit_residual(self) -> Optional[NDArray[np.float32]]: ...
+    def per_vertex_directions(self, atlas: Atlas) -> NDArray[np.float32]: ...
+    @property
+    def summary(self) -> dict[str, Any]: ...
+    def per_vertex(self, atlas: Atlas, query: str) -> list[NDArray[np.float32]]: ...
+
+def compute_settings(
+    features: list[str],
+    radius: float,
+    samples: int,
+    compute_resolution: int,
+    adaptive: bool,
+    seed: int,
+    options: dict[str, Any],
+) -> ComputeSettings: ...
+def compute_maps(atlas: Atlas, settings: ComputeSettings) -> FeatureMaps: ...
+def neighbourhood_tile_arrays(
+    atlas: Atlas, settings: ComputeSettings, start: int, stop: int
+) -> tuple[
+    NDArray[np.uint32],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.bool_],
+]: ...
+
+@final
+class ReferenceMesh:
+    """Half-edge connectivity and Voronoi areas of the object-space reference."""
+
+    def __new__(cls, positions: NDArray[np.float64], faces: NDArray[np.int64]) -> ReferenceMesh: ...
+    @property
+    def n_welded_vertices(self) -> int: ...
+    def geodesic_distances(self, source: int, max_distance: float) -> NDArray[np.float64]: ...
+    def compute(
+        self,
+        features: list[str],
+        radius: float,
+        gaussian_method: str,
+        volume_weighting: str,
+        rho_min: float,
+        flat_tol: float,
+        method: str,
+        vertices: Optional[NDArray[np.int64]] = None,
+    ) -> tuple[list[NDArray[np.float64]], NDArray[np.uint32]]: ...
