@@ -43,7 +43,7 @@ NOISE_ARGS ?= --compute-resolution 256
 bench-noise: install
 	$(BIN)/python benches/bench_noise.py $(NOISE_ARGS)
 
-# The paper's evaluation (SPEC §5.2-§5.8) in one run, ~25-40 min on 2 cores: docs/EXPERIMENTS.md,
+# The paper's evaluation (DESIGN.md §5.2-§5.8) in one run, ~25-40 min on 2 cores: docs/EXPERIMENTS.md,
 # docs/experiments/results.json and plots. EXPERIMENTS_ARGS=--quick for a smoke run (written to
 # uvfeat-out/experiments-quick/), --only table1,radius, --resume, --report-only.
 experiments: install

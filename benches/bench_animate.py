@@ -2,7 +2,7 @@
 
     .venv/bin/python benches/bench_animate.py [--mesh ANIMATED.glb] [--frames 8] [--radius 2%]
 
-Default configuration (SPEC §1.10): 1024² geometry buffers, 512² computation texture, 256 samples.
+Default configuration (DESIGN.md §1.10): 1024² geometry buffers, 512² computation texture, 256 samples.
 Without --mesh it writes a skinned 102,400-triangle torus (xatlas atlas, 8 joints around the ring,
 each tilting back and forth about its own radial axis, so the ring waves) to a temporary GLB and plays it. Prints
 what runs once, the median milliseconds per frame by stage, and the share of the buffer pipeline

@@ -5,7 +5,7 @@
 On the 102,400-face torus (single lat-long chart and an xatlas atlas), default configuration
 otherwise (1024² buffers, 512² computation texture, H + K), with full and two-stage adaptive
 sampling (tau = 0.01). For each run: wall and CPU time, and the per-vertex error of H and K
-(%AE = mean |x - truth| / (p99 - p1) of truth, SPEC §5.1) against
+(%AE = mean |x - truth| / (p99 - p1) of truth, DESIGN.md §5.1) against
 - a converged run of the same estimator (4,096 samples): the Monte Carlo noise alone, which is
   what the number of samples controls;
 - the analytic torus: noise plus the estimator's bias at this radius, which no sample count removes.

@@ -2,7 +2,7 @@
 
     .venv/bin/python benches/bench_features.py [--mesh PATH] [--feature mean_curvature] [--method fit]
 
-Default configuration (SPEC §1.10): 1024² geometry buffers, 512² computation texture, 256 samples.
+Default configuration (DESIGN.md §1.10): 1024² geometry buffers, 512² computation texture, 256 samples.
 Prints ms per stage and in total, then the time against the radius (1–16 % of the diagonal) and
 against the number of samples (64–400). Without --mesh it uses a 102,400-triangle torus with an
 xatlas multi-chart atlas. RAYON_NUM_THREADS caps the threads.

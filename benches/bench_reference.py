@@ -1,9 +1,9 @@
-"""Benchmark of the object-space reference against the parametric method (SPEC §5.1, paper Fig. 10).
+"""Benchmark of the object-space reference against the parametric method (DESIGN.md §5.1, paper Fig. 10).
 
     .venv/bin/python benches/bench_reference.py [--mesh PATH] [--feature mean_curvature] [--exact]
 
 For each radius (1–16 % of the diagonal): the parametric time per frame (buffers + features +
-per-vertex lookup, SPEC §1.10 defaults), the reference time (estimation, half-edges excluded),
+per-vertex lookup, DESIGN.md §1.10 defaults), the reference time (estimation, half-edges excluded),
 the speed-up (reference / parametric), %AE and the mean samples per vertex/texel. Without
 --mesh it uses the 102,400-triangle torus with an xatlas atlas of bench_features.py. --exact adds
 the per-vertex cost of the exact-geodesic K on 500 vertices. RAYON_NUM_THREADS caps the threads.

@@ -1,4 +1,4 @@
-"""Reproduces the paper's evaluation (SPEC §5.2-§5.8) in one command and writes docs/EXPERIMENTS.md.
+"""Reproduces the paper's evaluation (DESIGN.md §5.2-§5.8) in one command and writes docs/EXPERIMENTS.md.
 
     make experiments                                   # or: .venv/bin/python benches/experiments.py
     .venv/bin/python benches/experiments.py --quick    # smoke run, tiny sizes (uvfeat-out/experiments-quick/)

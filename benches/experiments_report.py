@@ -1,4 +1,4 @@
-"""Markdown tables of benches/experiments.py, with the paper's numbers (SPEC §5.2-§5.8) beside ours."""
+"""Markdown tables of benches/experiments.py, with the paper's numbers (DESIGN.md §5.2-§5.8) beside ours."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from report_common import write_section
 START, END = "<!-- experiments:start -->", "<!-- experiments:end -->"
 H = "mean_curvature"
 
-# Paper numbers (SPEC §5; GTX 670 GPU, 4-core i7 reference). N -> variant -> (ms, %AE).
+# Paper numbers (DESIGN.md §5; GTX 670 GPU, 4-core i7 reference). N -> variant -> (ms, %AE).
 PAPER_T1 = {64: {"full": (17.57, 1.172), "adaptive": (15.94, 1.331)},
             100: {"full": (22.17, 1.035), "adaptive": (19.54, 1.110)},
             256: {"full": (50.54, 1.005), "adaptive": (41.44, 1.007)},
@@ -113,7 +113,7 @@ def features(rows, cfg) -> list[str]:
     names = list(dict.fromkeys(r["feature"] for r in per))
     out = [f"Every feature at r = 2 % of the diagonal, defaults ({cfg['resolution']}² buffers, {cfg['compute']}² "
            f"texture, {cfg['N']} samples), each feature computed on its own; meshes: {_meshes(per)}. Cells: %AE "
-           "against the object-space reference (SPEC §5.1).", ""]
+           "against the object-space reference (DESIGN.md §5.1).", ""]
     body = [[f] + [pct(mean(select(per, mesh=m, feature=f), "percent_ae")) for m in meshes] +
             [pct(mean(select(per, feature=f), "percent_ae"))] for f in names]
     body.append(["**mean**"] + [pct(mean(select(per, mesh=m), "percent_ae")) for m in meshes] +
@@ -254,13 +254,13 @@ def charts(rows, cfg) -> list[str]:
     return out
 
 
-SECTIONS = {"table1": ("Table 1: full vs two-stage adaptive sampling (SPEC §5.2)", table1),
-            "table2": ("Table 2: resolution and precision (SPEC §5.3)", table2),
-            "features": ("Figure 7: every feature, parametric vs reference (SPEC §5.4)", features),
-            "triangles": ("Figure 9: scalability over the triangle count (SPEC §5.5)", triangles),
-            "radius": ("Figure 10: scalability over the neighbourhood size (SPEC §5.6)", radius),
-            "samples": ("Figures 11-12: samples and resolution (SPEC §5.7)", samples),
-            "charts": ("Figure 13: single vs multi-chart parameterisations (SPEC §5.8)", charts)}
+SECTIONS = {"table1": ("Table 1: full vs two-stage adaptive sampling (DESIGN.md §5.2)", table1),
+            "table2": ("Table 2: resolution and precision (DESIGN.md §5.3)", table2),
+            "features": ("Figure 7: every feature, parametric vs reference (DESIGN.md §5.4)", features),
+            "triangles": ("Figure 9: scalability over the triangle count (DESIGN.md §5.5)", triangles),
+            "radius": ("Figure 10: scalability over the neighbourhood size (DESIGN.md §5.6)", radius),
+            "samples": ("Figures 11-12: samples and resolution (DESIGN.md §5.7)", samples),
+            "charts": ("Figure 13: single vs multi-chart parameterisations (DESIGN.md §5.8)", charts)}
 
 
 def body(data: dict) -> str:

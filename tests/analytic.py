@@ -43,7 +43,7 @@ def torus_truth(mesh: uvfeat.Mesh, major: float = 2.0, minor: float = 0.5):
 
 
 def range_normalised_error(values: np.ndarray, reference: np.ndarray) -> float:
-    """SPEC §5.1 %AE / 100: mean |f - f_ref| / (Q99 - Q1 of f_ref)."""
+    """DESIGN.md §5.1 %AE / 100: mean |f - f_ref| / (Q99 - Q1 of f_ref)."""
     ok = np.isfinite(values) & np.isfinite(reference)
     q1, q99 = np.percentile(reference[ok], [1, 99])
     return float(np.mean(np.abs(values[ok] - reference[ok])) / (q99 - q1))

@@ -1,4 +1,4 @@
-"""Feature estimators against analytic truth (SPEC §5.9) on several parameterisations, their
+"""Feature estimators against analytic truth (DESIGN.md §5.9) on several parameterisations, their
 invariances, and the public API's contract."""
 
 import os

@@ -1,4 +1,4 @@
-"""The paper's choices (SPEC §1.10, `paper_mode=True`), each also available on its own: per-chart
+"""The paper's choices (DESIGN.md §1.10, `paper_mode=True`), each also available on its own: per-chart
 pattern repetition (§1.6), bilinear buffer lookup, chord-sum geodesics, and the geodesic-disk K."""
 
 import warnings

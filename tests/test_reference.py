@@ -1,4 +1,4 @@
-"""The object-space reference (SPEC §5.1) from Python, and ``uvfeat compare``."""
+"""The object-space reference (DESIGN.md §5.1) from Python, and ``uvfeat compare``."""
 
 import json
 
@@ -38,7 +38,7 @@ def test_reference_object_answers_radii_options_and_vertex_subsets(sphere):
     np.testing.assert_array_equal(subset, full[picked])
     assert ref.last_samples.shape == (3,) and (ref.last_samples > 6).all()
     uniform = ref.compute("mean_curvature", "10%", volume_weighting="uniform")["mean_curvature"]
-    assert abs(np.median(uniform) - 8 / 9) < 0.03  # the paper's literal weighting: biased to 8H/9 (SPEC §3.1)
+    assert abs(np.median(uniform) - 8 / 9) < 0.03  # the paper's literal weighting: biased to 8H/9 (DESIGN.md §3.1)
     assert set(ref.last_timings) == {"connectivity_s", "estimation_s"}
 
 
@@ -49,7 +49,7 @@ def test_geodesic_area_variants(sphere):
     assert abs(np.median(exact) - (1.0 - 0.5**2 / 30.0)) < 0.02  # the finite-r value of the disk formula
     paper = uvfeat.reference.compute(sphere, "gaussian_curvature", 0.5, vertices=some,
                                      gaussian_method="geodesic_area")["gaussian_curvature"]
-    assert np.median(paper) > 5.0  # edge paths overestimate distances (SPEC §3.5)
+    assert np.median(paper) > 5.0  # edge paths overestimate distances (DESIGN.md §3.5)
 
 
 def test_exact_geodesics_agree_with_kirsanovs_mmp():

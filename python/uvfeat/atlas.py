@@ -1,4 +1,4 @@
-"""The :class:`Atlas`: a mesh rasterised into parametric-space buffers (SPEC §1.3, paper Fig. 1).
+"""The :class:`Atlas`: a mesh rasterised into parametric-space buffers (DESIGN.md §1.3, paper Fig. 1).
 
 Buffers are ``(R, R, ...)`` arrays indexed ``[j, i]``: row ``j`` is the v index (v up, so row 0 is
 v = 0, the bottom of a picture) and texel ``(i, j)`` is centred at ``((i + 0.5)/R, (j + 0.5)/R)``.
@@ -37,7 +37,7 @@ def check_resolution(resolution, name: str = "resolution") -> int:
 
 
 class Location(NamedTuple):
-    """Where a parametric point ends up after relocation across seams (SPEC §1.5)."""
+    """Where a parametric point ends up after relocation across seams (DESIGN.md §1.5)."""
 
     status: str
     """"inside", "border" (the march left the surface at a mesh border) or "missing"."""
@@ -213,11 +213,11 @@ class Atlas:
         compute_resolution : int
             Size ``W_c`` of the computation texture.
         adaptive : bool
-            Two-stage adaptive sampling (SPEC §1.8; ``tau`` option, default 0.01).
+            Two-stage adaptive sampling (DESIGN.md §1.8; ``tau`` option, default 0.01).
         seed : int
             Seed of the pattern and the per-pixel rotations (results do not depend on threads).
         paper_mode : bool
-            The paper's choices where they differ from ours (SPEC §1.10), for reproduction.
+            The paper's choices where they differ from ours (DESIGN.md §1.10), for reproduction.
         **options
             ``margin`` (1.25), ``grow_margin`` (True: sample again over a larger domain where the
             ellipse did not cover the ball), ``max_jumps`` (32), ``relocation`` ("walk" | "march" | "per_chart"), ``criterion`` ("euclidean" | "geodesic"),
@@ -243,7 +243,7 @@ class Atlas:
     def neighbourhoods(self, radius, samples: int = 256, compute_resolution: int = 512, seed: int = 0,
                        tile_texels: int = 16384, **options):
         """The weighted neighbourhood samples of every texel, in tiles, for user-defined operators
-        ``F(p, S(p))`` (SPEC §2.9). Yields :class:`Neighbourhoods` tuples whose arrays hold
+        ``F(p, S(p))`` (DESIGN.md §2.9). Yields :class:`Neighbourhoods` tuples whose arrays hold
         ``tile_texels x samples`` samples at most (memory-bounded)."""
         from .features import compute_maps_settings
 
@@ -321,7 +321,7 @@ class Atlas:
 
     def locate(self, start, target, chart: int | None = None, max_jumps: int = 32) -> Location:
         """Relocates ``target``, an offset of ``start`` (in ``chart``, default: the chart at
-        ``start``), across seams (SPEC §1.5)."""
+        ``start``), across seams (DESIGN.md §1.5)."""
         status, landed, uv, m, jumps = self._core.locate(tuple(map(float, start)), self._chart_of(start, chart),
                                                          tuple(map(float, target)), int(max_jumps))
         return Location(status, landed, uv, None if m is None else np.array(m), jumps)

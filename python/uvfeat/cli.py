@@ -306,7 +306,7 @@ def build_parser() -> argparse.ArgumentParser:
                                   description="Writes per_vertex_r*.ply (vertex properties + colours) and .npz, "
                                   "FEATURE_r*.npy and .png maps (v up), and summary.json.")
     _add_feature_command_options(compute, "; comma-separated for several scales")
-    compute.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (SPEC §1.8)")
+    compute.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (DESIGN.md §1.8)")
     compute.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
     compute.add_argument("--directions", choices=("d1", "d2"), default=None,
                          help="draw this principal direction (d1 of k1, d2 of k2) as segments on the map pictures; "
@@ -316,7 +316,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     compare = commands.add_parser("compare", help="run the parametric method and the object-space reference "
                                   "side by side: errors, timings, pictures",
-                                  description="Prints %%AE (SPEC §5.1: mean |f - f_ref| over the Q1-Q99 range of "
+                                  description="Prints %%AE (DESIGN.md §5.1: mean |f - f_ref| over the Q1-Q99 range of "
                                   "f_ref) and the mean-normalised error per feature, the time of each method "
                                   "(parametric: buffers + features + per-vertex lookup; reference: without the "
                                   "half-edge construction) and the speed-up; writes compare_FEATURE.png "

@@ -1,4 +1,4 @@
-"""The parametric method side by side with the object-space reference (SPEC §5.1): per-feature
+"""The parametric method side by side with the object-space reference (DESIGN.md §5.1): per-feature
 %AE and mean-normalised error, timings as the paper takes them, and pictures.
 
 Timings follow the paper (§5): the parametric side counts what every frame costs (buffer
@@ -24,7 +24,7 @@ PARAMETRIC_GAUSSIAN = {"moments": "moments", "geodesic_area": "geodesic_area", "
 
 
 def absolute_errors(values: np.ndarray, reference: np.ndarray) -> dict:
-    """SPEC §5.1 error of ``values`` against ``reference`` (per vertex, NaN on either side left out).
+    """DESIGN.md §5.1 error of ``values`` against ``reference`` (per vertex, NaN on either side left out).
 
     ``percent_ae = 100 mean|f - f_ref| / (Q99(f_ref) - Q1(f_ref))`` (range-normalised, because H
     and K cross zero; NaN when the reference is constant) and ``mean_normalised = mean|f - f_ref|

@@ -1,4 +1,4 @@
-"""Multi-scale features (SPEC §1.4–§1.10, §2): :class:`FeatureMap` and the option handling behind
+"""Multi-scale features (DESIGN.md §1.4–§1.10, §2): :class:`FeatureMap` and the option handling behind
 ``Atlas.compute`` and ``uvfeat.compute``.
 
 Conventions: ``H = (k1 + k2)/2``, positive where the surface bends away from the (outward) normal;
@@ -22,7 +22,7 @@ from .errors import InvalidParameterError
 FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature", "gaussian_curvature",
             "k1", "k2", "shape_index", "curvedness")
 
-#: Options of ``compute`` beyond the named arguments, with the SPEC §1.10 defaults.
+#: Options of ``compute`` beyond the named arguments, with the DESIGN.md §1.10 defaults.
 DEFAULT_OPTIONS = {
     "margin": 1.25,
     "grow_margin": True,
@@ -42,7 +42,7 @@ DEFAULT_OPTIONS = {
     "query": "texture",
 }
 
-#: What ``paper_mode=True`` changes (SPEC §1.10). The paper's f16 buffers belong to the atlas:
+#: What ``paper_mode=True`` changes (DESIGN.md §1.10). The paper's f16 buffers belong to the atlas:
 #: ``Atlas(mesh, precision="f16")``.
 PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "relocation": "per_chart", "lookup": "bilinear",
                  "geodesic": "chord_sum", "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}

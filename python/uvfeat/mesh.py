@@ -174,7 +174,7 @@ class Mesh:
     # -- pre-processing -----------------------------------------------------------------------
     @functools.cached_property
     def topology(self) -> _core.Topology:
-        """Welded connectivity, charts and edge classes (SPEC §1.2), built once on first use."""
+        """Welded connectivity, charts and edge classes (DESIGN.md §1.2), built once on first use."""
         if not self.has_uvs:
             raise UVError(f"{self.name} has no UV coordinates; use mesh.with_atlas() (xatlas) or load(..., uv='auto')")
         return _core.Topology(self._positions, self._faces, self._uvs, self._uv_faces)

@@ -1,4 +1,4 @@
-"""The object-space reference (SPEC §5.1): every feature estimated per vertex from the mesh
+"""The object-space reference (DESIGN.md §5.1): every feature estimated per vertex from the mesh
 itself, the measure the parametric method is compared against.
 
 The neighbourhood of vertex ``p`` is the set of vertices reached from it over edges whose
@@ -30,7 +30,7 @@ from .mesh import Mesh
 #: Gaussian-curvature methods of the reference.
 GAUSSIAN_METHODS = ("moments", "geodesic_area", "exact_geodesic_area")
 
-#: Options of the reference, with the parametric defaults (SPEC §1.10) where they are shared.
+#: Options of the reference, with the parametric defaults (DESIGN.md §1.10) where they are shared.
 DEFAULT_OPTIONS = {"gaussian_method": "moments", "volume_weighting": "distance", "rho_min": 0.1, "flat_tol": 1e-3,
                    "method": "integral"}
 

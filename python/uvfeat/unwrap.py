@@ -1,4 +1,4 @@
-"""Automatic multi-chart UV atlases with xatlas, for meshes that have none (SPEC §1.1).
+"""Automatic multi-chart UV atlases with xatlas, for meshes that have none (DESIGN.md §1.1).
 
 The unwrap is the slowest step for a mesh without UVs (about 60 s for a 200K-face scan), and it
 depends only on the mesh and the options, so its result is cached on disk, keyed by a hash of the
@@ -44,7 +44,7 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
     faces : (n_faces, 3) int64
     resolution : int
         Texture size the packing is made for; ``padding`` is in texels at that size. Use the
-        geometry-buffer resolution so that gutters are at least 2 texels there (SPEC §1.1).
+        geometry-buffer resolution so that gutters are at least 2 texels there (DESIGN.md §1.1).
     padding : int
         Gutter between charts, in texels at ``resolution``.
     max_chart_area : float

@@ -1,5 +1,5 @@
 //! The atlas: a mesh's topology, its rasterised coverage and the current frame's geometry buffers
-//! (SPEC §1.2–§1.3), rebuilt per frame by [`Atlas::update`] without redoing the pre-processing.
+//! (DESIGN.md §1.2–§1.3), rebuilt per frame by [`Atlas::update`] without redoing the pre-processing.
 
 use crate::error::{Result, UvfeatError};
 use crate::frame::Frame;
@@ -59,7 +59,7 @@ impl Atlas {
         Ok(Self { topology, coverage, frame, buffers: OnceLock::new(), patches, precision: options.precision })
     }
 
-    /// The geometry buffers of the frame (SPEC §1.3: position, normal, metric per texel). The
+    /// The geometry buffers of the frame (DESIGN.md §1.3: position, normal, metric per texel). The
     /// default triangle lookup reads the faces and their patches, not these, so they are
     /// evaluated on first use (the bilinear lookup, the buffer getters): an animation frame
     /// computed with the defaults never pays for them (~20 ms and 36 MB at 1024²).
@@ -108,7 +108,7 @@ impl Atlas {
     }
 
     /// The texel containing `uv` if `accept` takes it, else the accepted texel of the 3x3
-    /// neighbourhood whose centre is closest to `uv` (the SPEC's fallback for points in gutters).
+    /// neighbourhood whose centre is closest to `uv` (the fallback of DESIGN.md §1.3.6 for points in gutters).
     pub fn nearest_texel(&self, uv: DVec2, accept: impl Fn(usize) -> bool) -> Option<usize> {
         if let Some(t) = self.texel_at(uv).filter(|&t| accept(t)) {
             return Some(t);

@@ -1,4 +1,4 @@
-//! Local metric distortion (SPEC §1.3.3, paper eq. 2, decision A5): how many object units one uv
+//! Local metric distortion (DESIGN.md §1.3.3, paper eq. 2, decision A5): how many object units one uv
 //! unit covers along the principal axes of the first fundamental form.
 //!
 //! Besides the exact per-face metric of the buffers, the sampler uses a smoothed metric field: the

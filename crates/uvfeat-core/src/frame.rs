@@ -1,4 +1,4 @@
-//! Per-frame mesh quantities (SPEC §1.9, animation): everything that depends on positions and is
+//! Per-frame mesh quantities (DESIGN.md §1.9, animation): everything that depends on positions and is
 //! recomputed for each frame, on top of the reused topology.
 
 use crate::distortion::{corner_metrics, interpolated_metric, Distortion};
@@ -174,7 +174,7 @@ impl Frame {
     /// The sampler's metric at `uv` in `face`: the face's own metric, unless it is far more
     /// anisotropic than the smoothed field around it (a UV sliver, see [`corner_metrics`]); then
     /// the smoothed field. Where the two agree the face's metric is kept, so regular
-    /// parameterisations sample exactly as SPEC §1.4 says. Zero for a face without a
+    /// parameterisations sample exactly as DESIGN.md §1.4 says. Zero for a face without a
     /// parameterisation.
     pub fn sampling_distortion(&self, topology: &Topology, face: u32, uv: DVec2) -> Distortion {
         let Some(map) = &self.face_maps[face as usize] else {

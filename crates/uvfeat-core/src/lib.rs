@@ -8,7 +8,7 @@
 //! 3. [`distortion`] and [`relocation`]: local metric and seam-crossing of parametric points;
 //! 4. [`atlas`]: the object tying them together, rebuilt per frame.
 //!
-//! Conventions (SPEC §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
+//! Conventions (DESIGN.md §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
 //! at index `j * R + i`, centred at `((i + 0.5)/R, (j + 0.5)/R)`; normals outward by the
 //! right-hand rule on counter-clockwise corners.
 #![warn(missing_docs)]

@@ -1,4 +1,4 @@
-//! Surface lookup at a parametric point (SPEC §1.3): the exact interpolation of the face the
+//! Surface lookup at a parametric point (DESIGN.md §1.3): the exact interpolation of the face the
 //! point's texel shows (`lookup = "triangle"`, default), or the paper's bilinear filtering of the
 //! geometry buffers (`lookup = "bilinear"`).
 

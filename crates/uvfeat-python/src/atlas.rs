@@ -150,7 +150,7 @@ impl PyAtlas {
         Ok(out)
     }
 
-    /// SPEC §1.5 `locate`: `(status, chart, uv, M_path, jumps)`; status is "inside", "border"
+    /// DESIGN.md §1.5 `locate`: `(status, chart, uv, M_path, jumps)`; status is "inside", "border"
     /// (off the surface) or "missing".
     #[pyo3(signature = (start, chart, target, max_jumps = 32))]
     fn locate(

@@ -1,4 +1,4 @@
-//! The object-space reference (SPEC §5.1): a prepared mesh and per-vertex features.
+//! The object-space reference (DESIGN.md §5.1): a prepared mesh and per-vertex features.
 
 use crate::arrays::{rows, to_numpy};
 use crate::error::guarded;

@@ -1,4 +1,4 @@
-//! Local bending energy (SPEC §2.1, paper eq. 5; Huang et al. 2006; decision A4).
+//! Local bending energy (DESIGN.md §2.1, paper eq. 5; Huang et al. 2006; decision A4).
 
 use super::statistics::WeightedSums;
 

@@ -1,4 +1,4 @@
-//! Curvedness (SPEC §2.8; Koenderink & van Doorn 1992).
+//! Curvedness (DESIGN.md §2.8; Koenderink & van Doorn 1992).
 
 /// `C = sqrt((k1^2 + k2^2) / 2)`: how strongly curved, whatever the shape. Unit sphere 1, unit
 /// cylinder `1/sqrt(2)`, plane 0. Units 1/length.

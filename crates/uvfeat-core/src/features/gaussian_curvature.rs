@@ -1,4 +1,4 @@
-//! Gaussian curvature (SPEC §2.5): curvature moments (default) or the paper's geodesic-disk area.
+//! Gaussian curvature (DESIGN.md §2.5): curvature moments (default) or the paper's geodesic-disk area.
 
 use super::statistics::WeightedSums;
 use std::f64::consts::PI;
@@ -16,7 +16,7 @@ pub enum GaussianMethod {
 
 /// Moments estimator: with `k_i = -2 sin(alpha_i) / rho_i` (normal curvature of the osculating
 /// circle through `q_i`), `K_m = 3 <k>_w^2 - 2 <k^2>_w = H_m^2 - 2 Var_w(k)`, `w = dA rho^2`
-/// (the SPEC's `dA`, times `rho^2` against the facet noise of triangle meshes), `rho >= 0.1 r`. Averaging `kappa_n(phi) = k1 cos^2 + k2 sin^2` over phi gives
+/// (the `dA` of the original contract, DESIGN.md §2.5b, times `rho^2` against the facet noise of triangle meshes), `rho >= 0.1 r`. Averaging `kappa_n(phi) = k1 cos^2 + k2 sin^2` over phi gives
 /// `<kappa_n> = H`, `<kappa_n^2> = (3 k1^2 + 2 k1 k2 + 3 k2^2)/8`, hence `K = k1 k2`. Sign-free
 /// w.r.t. the normal. Units 1/length^2.
 pub fn gaussian_curvature_moments(normal_curvature: &WeightedSums) -> f64 {
@@ -24,7 +24,7 @@ pub fn gaussian_curvature_moments(normal_curvature: &WeightedSums) -> f64 {
 }
 
 /// Geodesic-area estimator: `K = 12 (pi r^2 - GA) / (pi r^4)` with `GA = sum_{d_i < r} dA_i`,
-/// `d_i` the arc-length geodesic estimate (SPEC §2.5a). Needs the margin `m >= 1.1` so the
+/// `d_i` the arc-length geodesic estimate (DESIGN.md §2.5a). Needs the margin `m >= 1.1` so the
 /// geodesic disk lies inside the sampled ellipse. Units 1/length^2.
 pub fn gaussian_curvature_geodesic_area(geodesic_disk: &WeightedSums, radius: f64) -> f64 {
     if geodesic_disk.w <= 0.0 {

@@ -1,4 +1,4 @@
-//! Mean curvature from the sphere-volume integral invariant (SPEC §2.4, paper eq. 7; Hulin &
+//! Mean curvature from the sphere-volume integral invariant (DESIGN.md §2.4, paper eq. 7; Hulin &
 //! Troyanov 2003, Pottmann et al. 2007).
 
 use super::statistics::{VolumeWeighting, WeightedSums};

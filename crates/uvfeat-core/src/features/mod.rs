@@ -1,4 +1,4 @@
-//! Stage 5 of the pipeline (SPEC §2): the feature estimators, each a small function of the
+//! Stage 5 of the pipeline (DESIGN.md §2): the feature estimators, each a small function of the
 //! weighted sums of one neighbourhood.
 
 mod bending_energy;
@@ -187,7 +187,7 @@ fn integral_curvatures(stats: &NeighbourhoodStats, h: f64, settings: &EstimatorS
 
 /// The standard error of `feature`'s Monte Carlo estimate relative to its natural unit (`1/r`
 /// for curvatures, `1/r^2` for K and bending energy, `r^3` for volumes), from the stage-1 sums
-/// (SPEC §1.8): stage 2 runs where this exceeds `tau`.
+/// (DESIGN.md §1.8): stage 2 runs where this exceeds `tau`.
 pub fn relative_standard_error(feature: Feature, stats: &NeighbourhoodStats, settings: &EstimatorSettings) -> f64 {
     let r = settings.radius;
     match feature {

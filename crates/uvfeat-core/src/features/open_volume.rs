@@ -1,4 +1,4 @@
-//! Open sphere volume `V_o` (SPEC §2.2, paper eq. 6 reconstructed, decision A1).
+//! Open sphere volume `V_o` (DESIGN.md §2.2, paper eq. 6 reconstructed, decision A1).
 
 use super::mean_curvature::radial_correction;
 use super::statistics::{VolumeWeighting, WeightedSums};

@@ -1,4 +1,4 @@
-//! Principal curvatures (SPEC §2.6, paper eq. 9).
+//! Principal curvatures (DESIGN.md §2.6, paper eq. 9).
 
 /// `k1,2 = H +- sqrt(max(H^2 - K, 0))`, `k1 >= k2`; returns `(k1, k2, clamped)` where `clamped`
 /// says `H^2 - K < 0` had to be clamped (noisy estimates, decision A17). With the moments pair

@@ -1,4 +1,4 @@
-//! Shape index (SPEC §2.7, paper eq. 8 with its sign fixed, decision A16; Koenderink & van Doorn 1992).
+//! Shape index (DESIGN.md §2.7, paper eq. 8 with its sign fixed, decision A16; Koenderink & van Doorn 1992).
 
 use std::f64::consts::FRAC_2_PI;
 

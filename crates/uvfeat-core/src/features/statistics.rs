@@ -66,7 +66,7 @@ impl WeightedSums {
     }
 }
 
-/// How the sphere-volume integrands weight samples (SPEC §2.2, decision A2).
+/// How the sphere-volume integrands weight samples (DESIGN.md §2.2, decision A2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum VolumeWeighting {
     /// `w = dA rho`: consistent for area-uniform samples (default).
@@ -96,7 +96,7 @@ pub struct NeighbourhoodStats {
 pub struct StatsSettings {
     /// Neighbourhood radius `r`.
     pub radius: f64,
-    /// Inner exclusion `rho_min` of the bending and moment integrands (SPEC: `0.1 r`).
+    /// Inner exclusion `rho_min` of the bending and moment integrands (DESIGN.md §1.10: `0.1 r`).
     pub rho_min: f64,
     /// Weighting of the volume integrands.
     pub volume_weighting: VolumeWeighting,
@@ -123,7 +123,7 @@ impl NeighbourhoodStats {
                 // On a triangle mesh a sample sits on a flat facet, off the smooth surface by about
                 // h^2 k / 8, which moves k_i by 2 (h^2 k / 8) / rho^2: the samples near p would
                 // dominate Var(k) and bias K_m = H^2 - 2 Var low. Weighting by rho^2 keeps the
-                // estimator consistent (any radial weight does, SPEC §2.5b) and removes that bias
+                // estimator consistent (any radial weight does, DESIGN.md §2.5b) and removes that bias
                 // (measured: unit sphere |K-1| 0.032 -> 0.012, torus outer K -20 % -> -5 %).
                 let w = s.area * s.distance * s.distance * inverse_radius2;
                 self.normal_curvature.add(w, -2.0 * s.sin_alpha * s.distance * inv_rho2);

@@ -1,4 +1,4 @@
-//! Sphere-volume integral invariant `V_r` (SPEC §2.3; Pottmann et al. 2007/2009).
+//! Sphere-volume integral invariant `V_r` (DESIGN.md §2.3; Pottmann et al. 2007/2009).
 
 use super::open_volume::{ball_volume, open_volume};
 use super::statistics::{VolumeWeighting, WeightedSums};

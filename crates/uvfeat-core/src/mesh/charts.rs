@@ -1,4 +1,4 @@
-//! Charts (SPEC §1.2.3): connected components of faces joined by UV-continuous edges.
+//! Charts (DESIGN.md §1.2.3): connected components of faces joined by UV-continuous edges.
 
 use super::weld::{find, union};
 

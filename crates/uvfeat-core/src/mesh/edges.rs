@@ -1,4 +1,4 @@
-//! Edge classes (SPEC §1.2.4): every geometric edge is interior, seam, border or non-manifold.
+//! Edge classes (DESIGN.md §1.2.4): every geometric edge is interior, seam, border or non-manifold.
 
 use glam::DVec2;
 use rayon::prelude::*;
@@ -18,7 +18,7 @@ pub enum SideKind {
     Seam { other_face: u32, other_local: u8 },
     /// One face: the mesh ends here.
     Border,
-    /// More than two faces share the edge: treated as a border (SPEC §1.1), counted.
+    /// More than two faces share the edge: treated as a border (DESIGN.md §1.1), counted.
     NonManifold,
     /// The face across has a zero-area UV triangle, so there is nowhere to continue.
     DegenerateNeighbour,
@@ -49,7 +49,7 @@ pub(crate) struct EdgeClasses {
 /// Classifies the edges of `faces` (geometric vertex ids), skipping `degenerate` faces.
 ///
 /// Two faces are UV-continuous across an edge when both endpoints carry the same UV (compared
-/// exactly) on both sides (SPEC §1.2.2–§1.2.3).
+/// exactly) on both sides (DESIGN.md §1.2.2–§1.2.3).
 pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], degenerate: &[bool]) -> EdgeClasses {
     let mut sides: Vec<(u64, FaceSide)> = faces
         .par_iter()

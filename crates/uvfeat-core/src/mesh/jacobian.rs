@@ -1,4 +1,4 @@
-//! The Jacobian `J_T` of a triangle's parameterisation (SPEC §1.2.5, §1.3.1): the exact metric of
+//! The Jacobian `J_T` of a triangle's parameterisation (DESIGN.md §1.2.5, §1.3.1): the exact metric of
 //! the piecewise-linear mesh, constant per triangle (built per frame by `frame::FaceMap`).
 
 use glam::{DVec2, DVec3};

@@ -1,4 +1,4 @@
-//! Stage 1 of the pipeline (SPEC §1.1–§1.2): the validated input mesh and its UV-only
+//! Stage 1 of the pipeline (DESIGN.md §1.1–§1.2): the validated input mesh and its UV-only
 //! pre-processing (welding, charts, edge classes), plus the per-frame quantities that depend on
 //! positions (vertex normals, triangle metrics, seam transition maps).
 
@@ -24,7 +24,7 @@ pub use weld::weld_positions;
 use crate::error::{Result, UvfeatError};
 use glam::{DVec2, DVec3};
 
-/// A triangle mesh with per-corner UVs, validated (SPEC §1.1).
+/// A triangle mesh with per-corner UVs, validated (DESIGN.md §1.1).
 ///
 /// `uv_faces[f][k]` indexes `uvs` for corner `k` of face `f` (OBJ style); for per-vertex UVs pass
 /// `uv_faces = faces`. Corners are counter-clockwise seen from outside (outward normals).
@@ -118,7 +118,7 @@ pub(crate) fn uv_signed_area2(uv: &[DVec2; 3]) -> f64 {
 }
 
 /// A UV triangle is degenerate when its area is negligible against its edge lengths, so its
-/// Jacobian `J_T` is undefined (SPEC §1.1: skipped and counted).
+/// Jacobian `J_T` is undefined (DESIGN.md §1.1: skipped and counted).
 pub(crate) fn uv_is_degenerate(uv: &[DVec2; 3]) -> bool {
     let e1 = uv[1] - uv[0];
     let e2 = uv[2] - uv[0];

@@ -1,4 +1,4 @@
-//! Vertex normals (SPEC §0, A26): area-weighted average of incident face normals per geometric
+//! Vertex normals (DESIGN.md §0, A26): area-weighted average of incident face normals per geometric
 //! vertex, so both sides of a seam agree.
 
 use glam::DVec3;

@@ -1,4 +1,4 @@
-//! The once-per-topology pre-processing (SPEC §1.2): everything here depends on connectivity and
+//! The once-per-topology pre-processing (DESIGN.md §1.2): everything here depends on connectivity and
 //! UVs only, so every animation frame reuses it.
 
 use super::adjacency::{face_links, walk_faces, WalkFace};
@@ -73,7 +73,7 @@ pub struct Topology {
 }
 
 impl Topology {
-    /// Runs the pre-processing of SPEC §1.2 (welding, charts, edge classes).
+    /// Runs the pre-processing of DESIGN.md §1.2 (welding, charts, edge classes).
     ///
     /// `weld_tolerance` is in object units (0 = exact equality).
     ///

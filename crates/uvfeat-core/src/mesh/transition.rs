@@ -1,4 +1,4 @@
-//! Seam transition maps (SPEC §1.2.5, decision A6): the affine map that carries a parametric
+//! Seam transition maps (DESIGN.md §1.2.5, decision A6): the affine map that carries a parametric
 //! point of one chart across a seam into the chart on the other side.
 
 use super::edges::{uv_of_vertex, SideKind};
@@ -30,7 +30,7 @@ impl SeamMap {
 /// edge `eps_B` and the A-side perpendicular `w_A` (pointing out of `T_A`) onto the B-side one
 /// `w_B` (pointing into `T_B`), where "perpendicular" and "length" are measured in each side's
 /// metric, so `w` has the metric length of the edge. With the faces' own metrics this is exactly
-/// the hinge unfolding of `T_B` into the plane of `T_A` (SPEC §1.2.5): rotation, anisotropic scale,
+/// the hinge unfolding of `T_B` into the plane of `T_A` (DESIGN.md §1.2.5): rotation, anisotropic scale,
 /// shear and mirroring. The metric used on each side is the smoothed metric of the edge's two
 /// atlas corners (see `distortion::corner_metrics`), so that a sliver UV triangle at the seam does
 /// not skew what lies beyond it. Where a metric is singular the map falls back to the similarity

@@ -1,4 +1,4 @@
-//! Welding of duplicated positions into geometric vertices (SPEC §1.2.1).
+//! Welding of duplicated positions into geometric vertices (DESIGN.md §1.2.1).
 //!
 //! glTF and PLY split a vertex wherever its UV or normal changes; the edge graph must see through
 //! those splits, or every seam would look like a mesh border.

@@ -1,4 +1,4 @@
-//! Feature maps over the computation texture (SPEC §1.9): every texel centre of a `W_c x W_c`
+//! Feature maps over the computation texture (DESIGN.md §1.9): every texel centre of a `W_c x W_c`
 //! grid is a point `s` where all requested features are evaluated, in parallel over rows.
 
 use super::pixel::{evaluate_point, Patterns, PixelResult};

@@ -1,4 +1,4 @@
-//! Stage 6 of the pipeline (SPEC §1.9): feature maps over the computation texture and
+//! Stage 6 of the pipeline (DESIGN.md §1.9): feature maps over the computation texture and
 //! per-vertex values.
 
 mod feature_map;

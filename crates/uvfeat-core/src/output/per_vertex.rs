@@ -1,4 +1,4 @@
-//! Per-vertex values (SPEC §1.9): chart-masked bilinear lookup of the feature maps at every corner
+//! Per-vertex values (DESIGN.md §1.9): chart-masked bilinear lookup of the feature maps at every corner
 //! UV of a vertex, averaged over its corners; direct evaluation where no texel is usable.
 
 use super::feature_map::FeatureMaps;

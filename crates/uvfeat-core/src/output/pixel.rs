@@ -1,4 +1,4 @@
-//! Features at one parametric point: sampling (full or two-stage adaptive, SPEC §1.8), one pass of
+//! Features at one parametric point: sampling (full or two-stage adaptive, DESIGN.md §1.8), one pass of
 //! statistics, every estimator, and optional batch-means standard errors.
 
 use super::settings::ComputeSettings;
@@ -24,7 +24,7 @@ pub struct Patterns {
 }
 
 impl Patterns {
-    /// Patterns for `settings` (SPEC §1.4.2, §1.8, decision A19).
+    /// Patterns for `settings` (DESIGN.md §1.4.2, §1.8, decision A19).
     pub fn new(settings: &ComputeSettings) -> Self {
         let n = settings.samples;
         if settings.adaptive {

@@ -1,4 +1,4 @@
-//! Everything a feature computation is asked to do, with the SPEC §1.10 defaults in one place.
+//! Everything a feature computation is asked to do, with the DESIGN.md §1.10 defaults in one place.
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
@@ -22,8 +22,8 @@ pub struct ComputeSettings {
     pub margin: f64,
     /// Sample again with a larger margin where the ellipse did not cover the ball (on).
     pub grow_margin: bool,
-    /// Seams a sample may cross (32; SPEC 3, paper 1: fragmented atlases need more, and the exact
-    /// walk makes a crossing cheap).
+    /// Seams a sample may cross (32, DESIGN.md §1.10; originally 3, paper 1: fragmented atlases
+    /// need more, and the exact walk makes a crossing cheap).
     pub max_jumps: u32,
     /// How samples that leave their chart are relocated (exact walk).
     pub relocation: Relocation,
@@ -56,7 +56,7 @@ pub struct ComputeSettings {
 }
 
 impl ComputeSettings {
-    /// The defaults of SPEC §1.10 for `features` at `radius`.
+    /// The defaults of DESIGN.md §1.10 for `features` at `radius`.
     pub fn new(features: Vec<Feature>, radius: f64) -> Self {
         Self {
             features,

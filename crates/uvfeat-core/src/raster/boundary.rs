@@ -1,4 +1,4 @@
-//! Conservative rasterisation of chart-boundary edges (SPEC §1.3.2, as Sander et al. 2003 do):
+//! Conservative rasterisation of chart-boundary edges (DESIGN.md §1.3.2, as Sander et al. 2003 do):
 //! every texel whose square touches a boundary edge of a chart becomes a border texel of that
 //! chart, so charts have no gaps and the sampler always finds a border texel where it leaves one.
 

@@ -1,4 +1,4 @@
-//! Per-frame geometry buffers (SPEC §1.3.1, §1.3.3, §1.3.5): position, normal and distortion of
+//! Per-frame geometry buffers (DESIGN.md §1.3.1, §1.3.3, §1.3.5): position, normal and distortion of
 //! the surface point each texel shows, evaluated from the reusable [`Coverage`].
 
 use super::Coverage;
@@ -8,7 +8,7 @@ use glam::DVec3;
 use half::f16;
 use rayon::prelude::*;
 
-/// Storage precision of the position and normal buffers (SPEC §1.3.5, decision A22).
+/// Storage precision of the position and normal buffers (DESIGN.md §1.3.5, decision A22).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Precision {
     /// 32-bit floats (default).

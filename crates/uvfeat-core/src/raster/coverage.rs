@@ -1,6 +1,6 @@
-//! Which surface point every texel shows (SPEC §1.3.1–§1.3.2, §1.3.4). Coverage depends on UVs
+//! Which surface point every texel shows (DESIGN.md §1.3.1–§1.3.2, §1.3.4). Coverage depends on UVs
 //! only, so it is built once per topology and resolution; each frame then evaluates positions,
-//! normals and metrics from it (SPEC §1.9, animation).
+//! normals and metrics from it (DESIGN.md §1.9, animation).
 
 use super::blocked::Blocked;
 use super::boundary::{rasterise_edge, EdgeHit};

@@ -1,4 +1,4 @@
-//! Stage 2 of the pipeline (SPEC §1.3): rasterisation of the charts into parametric-space buffers.
+//! Stage 2 of the pipeline (DESIGN.md §1.3): rasterisation of the charts into parametric-space buffers.
 
 mod blocked;
 mod boundary;

@@ -1,4 +1,4 @@
-//! UV-space triangle rasterisation (SPEC §1.3.1): a texel is covered when its centre lies inside
+//! UV-space triangle rasterisation (DESIGN.md §1.3.1): a texel is covered when its centre lies inside
 //! the UV triangle, with the top-left fill rule deciding centres exactly on an edge.
 
 use glam::DVec2;

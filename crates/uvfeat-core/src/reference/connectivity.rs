@@ -20,7 +20,7 @@ pub struct Connectivity {
     /// (n_faces) faces as welded vertex ids; faces whose corners weld together are dropped.
     pub faces: Vec<[u32; 3]>,
     /// (3 n_faces) the half-edge of the neighbouring face on the same edge, or [`NO_TWIN`] on
-    /// borders and on edges with more than two faces (treated as borders, SPEC §1.1).
+    /// borders and on edges with more than two faces (treated as borders, DESIGN.md §1.1).
     pub twin: Vec<u32>,
     /// (n_vertices) the vertex lies on a border or non-manifold edge.
     pub boundary: Vec<bool>,

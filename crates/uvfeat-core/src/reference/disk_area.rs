@@ -1,6 +1,6 @@
 //! Area of the geodesic disk `GA(r)` of a vertex from per-vertex distances, in the two forms of
-//! SPEC §5.1, returned as the `geodesic_disk` sums the geodesic-area K estimator reads
-//! (`GA = sum w g`, SPEC §2.5a): the paper's sum of vertex areas, and the accurate sum of
+//! DESIGN.md §5.1, returned as the `geodesic_disk` sums the geodesic-area K estimator reads
+//! (`GA = sum w g`, DESIGN.md §2.5a): the paper's sum of vertex areas, and the accurate sum of
 //! clipped triangle areas.
 
 use super::connectivity::Connectivity;
@@ -30,8 +30,8 @@ pub fn vertex_disk(distances: &StampedValues, vertex_areas: &[f64], radius: f64)
 /// source ([`triangle_disk_area`]); faces where several unfoldings meet (shadows of saddles and
 /// cone vertices) are split in four, up to [`MAX_DEPTH`] times, until each piece has one source,
 /// and the last pieces interpolate `d` linearly. Interpolating the corner distances of whole
-/// faces (SPEC §5.1 as written) moves the circle inwards by about `h^2 / (8 r)` (`h` the edge
-/// length): a disk-area loss of about `h^2 / (8 r^2)`, which `K = 12 (pi r^2 - GA) / (pi r^4)`
+/// faces (as the original contract had it; DESIGN.md §4.2 D14) moves the circle inwards by
+/// about `h^2 / (8 r)` (`h` the edge length): a disk-area loss of about `h^2 / (8 r^2)`, which `K = 12 (pi r^2 - GA) / (pi r^4)`
 /// turns into a K bias of about `1.5 h^2 / r^4` (K = 19.8 instead of 0.8 at the outer equator of
 /// a 384 x 192 torus at r = 0.1; 0.88 with the exact circles). What remains is the polyhedron's own departure from the
 /// smooth surface (exact on flat and developable meshes).

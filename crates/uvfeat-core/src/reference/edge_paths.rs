@@ -1,11 +1,11 @@
 //! Shortest paths along mesh edges (Dijkstra): the geodesic distance of the paper-style
-//! per-vertex geodesic-area K (SPEC §5.1 "as printed"; the paper does not say which distance its
+//! per-vertex geodesic-area K (DESIGN.md §5.1 "as printed"; the paper does not say which distance its
 //! reference used, this is the usual cheap choice).
 //!
 //! Edge paths zig-zag, so they overestimate the surface distance by a factor that depends on the
 //! direction and the triangulation, not on the resolution (up to `sqrt 2` on a grid of right
 //! triangles): the disk looks too small and K comes out far too high even on a plane (K = 280 at
-//! r = 0.1 and 50 at r = 0.25 on a 64 x 64 grid of the unit square; SPEC §3.5 measured +22 on
+//! r = 0.1 and 50 at r = 0.25 on a 64 x 64 grid of the unit square; DESIGN.md §3.5 measured +22 on
 //! unit icospheres at r = 0.3). Use it to reproduce the paper's reference; the exact-geodesic
 //! variant is the accurate one.
 

@@ -1,5 +1,5 @@
 //! Exact polyhedral geodesic distances from one vertex to the vertices within a bound: the
-//! distance behind the accurate geodesic-area K of the reference (SPEC §5.1, §3.5).
+//! distance behind the accurate geodesic-area K of the reference (DESIGN.md §5.1, §3.5).
 //!
 //! Window propagation in the manner of Chen & Han (1990) with the priority order and a
 //! vertex-distance filter after Xin & Wang (2009, "ICH"). A *window* is an interval of an edge

@@ -15,7 +15,7 @@ const SADDLE_EXCESS: f64 = 1e-9;
 pub struct Geometry {
     /// (n_vertices) welded positions.
     pub positions: Vec<DVec3>,
-    /// (n_vertices) unit area-weighted normals (SPEC §0), the same as the parametric side's.
+    /// (n_vertices) unit area-weighted normals (DESIGN.md §0), the same as the parametric side's.
     pub normals: Vec<DVec3>,
     /// (n_vertices) mixed Voronoi areas `A_v` (length^2): the sample weights.
     pub areas: Vec<f64>,

@@ -1,4 +1,4 @@
-//! The object-space reference (SPEC §5.1): every feature of SPEC §2 estimated per vertex from the
+//! The object-space reference (DESIGN.md §5.1): every feature of DESIGN.md §2 estimated per vertex from the
 //! mesh itself, in parallel over vertices, to measure the parametric method against.
 //!
 //! - neighbourhood of vertex `p`: the vertices reached from `p` over edges whose endpoints lie
@@ -46,7 +46,7 @@ use vertex_estimate::{vertex_estimate, Context, Scratch};
 /// How the reference estimates Gaussian curvature (and with it k1, k2, shape index, curvedness).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ReferenceGaussian {
-    /// Normal-curvature moments, as the parametric default (SPEC §2.5b).
+    /// Normal-curvature moments, as the parametric default (DESIGN.md §2.5b).
     #[default]
     Moments,
     /// The paper's reference: `GA = sum A_v` over vertices within edge-path (Dijkstra) distance
@@ -76,7 +76,7 @@ pub struct ReferenceSettings {
 }
 
 impl ReferenceSettings {
-    /// The parametric defaults (SPEC §1.10) for `features` at `radius`.
+    /// The parametric defaults (DESIGN.md §1.10) for `features` at `radius`.
     pub fn new(features: Vec<Feature>, radius: f64) -> Self {
         let defaults = ComputeSettings::new(features, radius);
         Self {

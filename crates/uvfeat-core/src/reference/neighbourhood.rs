@@ -1,4 +1,4 @@
-//! The reference neighbourhood of a vertex (SPEC §5.1): the vertices reached by a breadth-first
+//! The reference neighbourhood of a vertex (DESIGN.md §5.1): the vertices reached by a breadth-first
 //! search from it over edges whose endpoints both lie within the Euclidean radius.
 
 use super::connectivity::Connectivity;

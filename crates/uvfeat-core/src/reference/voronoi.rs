@@ -1,5 +1,5 @@
 //! Mixed Voronoi vertex areas (Meyer, Desbrun, Schröder & Barr 2003, "Discrete differential-geometry
-//! operators for triangulated 2-manifolds", Fig. 4): the reference's sample weights (SPEC §5.1).
+//! operators for triangulated 2-manifolds", Fig. 4): the reference's sample weights (DESIGN.md §5.1).
 
 use glam::DVec3;
 

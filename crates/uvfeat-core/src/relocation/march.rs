@@ -1,4 +1,4 @@
-//! The texel march of SPEC §1.5 (paper §3.4, decisions A6–A8): march from the centre towards the
+//! The texel march of DESIGN.md §1.5 (paper §3.4, decisions A6–A8): march from the centre towards the
 //! sample, and where the march leaves the chart, carry the rest of the offset across the seam with
 //! the border texel's transition map.
 
@@ -7,7 +7,7 @@ use crate::atlas::Atlas;
 use crate::raster::closest_on_segment;
 use glam::{DMat2, DVec2};
 
-/// Locates `target`, an offset of `start` in chart `chart` (SPEC §1.5 `locate`).
+/// Locates `target`, an offset of `start` in chart `chart` (DESIGN.md §1.5 `locate`).
 ///
 /// After a crossing, the march continues from the image of the crossing point (the closest point
 /// of the seam edge, which the transition map carries exactly onto the other side) rather than
@@ -45,7 +45,7 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
 }
 
 /// The last point of the march from `origin` towards `target` in one-texel steps that is still
-/// in `chart`, before the first step outside it (SPEC §1.5); `None` when no step leaves it.
+/// in `chart`, before the first step outside it (DESIGN.md §1.5); `None` when no step leaves it.
 pub fn last_inside(atlas: &Atlas, origin: DVec2, target: DVec2, chart: i32) -> Option<DVec2> {
     let offset = target - origin;
     let steps = (offset.abs().max_element() * atlas.resolution() as f64).ceil().max(1.0);
@@ -54,7 +54,7 @@ pub fn last_inside(atlas: &Atlas, origin: DVec2, target: DVec2, chart: i32) -> O
     Some(origin + step * (exit - 1) as f64)
 }
 
-/// First `k` in `1..=steps` with `origin + k step` outside `chart` (SPEC §1.5 march), skipping
+/// First `k` in `1..=steps` with `origin + k step` outside `chart` (DESIGN.md §1.5 march), skipping
 /// ahead by the chart distance of the current texel: the points skipped are provably inside.
 fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
     let coverage = &atlas.coverage;
@@ -94,7 +94,7 @@ pub struct Crossing {
 }
 
 /// Maps `uv`, which must lie in (or next to) a border texel of `chart` with a seam across, to the
-/// chart on the other side with that texel's transition map (SPEC §1.3.4 `ADJ`).
+/// chart on the other side with that texel's transition map (DESIGN.md §1.3.4 `ADJ`).
 pub fn cross_seam(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Crossing> {
     let texel = border_texel(atlas, uv, chart)?;
     let side = atlas.coverage.border_side[texel] as usize;

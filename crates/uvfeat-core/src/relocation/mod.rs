@@ -1,7 +1,7 @@
-//! Relocation of parametric points that leave their chart (SPEC §1.5, paper §3.4): where does an
+//! Relocation of parametric points that leave their chart (DESIGN.md §1.5, paper §3.4): where does an
 //! offset of a point end up on the surface, in which chart, and through which seams.
 //!
-//! Two methods: the exact triangle walk ([`walk`], default) and the SPEC's texel march
+//! Two methods: the exact triangle walk ([`walk`], default) and the texel march of DESIGN.md §1.5.2
 //! ([`march`]). Both take the paper's fast path first: a target well inside the start chart (see
 //! [`interior_face`]) is returned as it is.
 
@@ -35,9 +35,9 @@ pub enum Relocation {
     /// Exact triangle walk across face adjacency and seams (default).
     #[default]
     Walk,
-    /// The texel march of SPEC §1.5, through border texels.
+    /// The texel march of DESIGN.md §1.5, through border texels.
     March,
-    /// The paper's per-chart pattern repetition (SPEC §1.6): the whole pattern is evaluated again
+    /// The paper's per-chart pattern repetition (DESIGN.md §1.6): the whole pattern is evaluated again
     /// around the centre carried into each neighbouring chart (see `sampling::gather_per_chart`).
     /// A single point located on its own is marched.
     PerChart,
@@ -45,7 +45,7 @@ pub enum Relocation {
 
 /// The face of the texel of `target` when that texel belongs to `chart`, its 3x3 neighbourhood is
 /// all `chart` and no chart boundary touches it: the point is in the chart, reached without
-/// crossing anything (up to the SPEC's known limitation, a target in its own chart across a gap of
+/// crossing anything (up to the known limitation of DESIGN.md §1.5.3, a target in its own chart across a gap of
 /// a non-convex chart; the Euclidean rejection removes those samples, and checking the whole
 /// segment instead tripled the time on a 692-chart torus without changing its per-vertex values
 /// beyond noise). It is the face the triangle lookup evaluates for that point. `None` otherwise.
@@ -56,7 +56,7 @@ pub fn interior_face(atlas: &Atlas, target: DVec2, chart: i32) -> Option<u32> {
     (face != u32::MAX && atlas.topology.face_chart[face as usize] == chart).then_some(face)
 }
 
-/// Locates `target`, an offset of `start` in `chart`, with `method` (SPEC §1.5 `locate`).
+/// Locates `target`, an offset of `start` in `chart`, with `method` (DESIGN.md §1.5 `locate`).
 /// `home` is the walk's start, `home(atlas, start, chart)`, when the caller has it already.
 pub fn locate_with(
     atlas: &Atlas,

@@ -167,7 +167,7 @@ const SKIP_EVERY: usize = 4;
 
 /// Locates `target` by walking from `home`, crossing at most `max_jumps` seams. After each seam, a
 /// target that lies well inside the chart across ([`interior_face`]) ends the walk at once, as the
-/// SPEC's loop does: walking on to it would cross that chart's texels one face at a time, the
+/// loop of DESIGN.md §1.5.2 does: walking on to it would cross that chart's texels one face at a time, the
 /// larger part of a crossing sample's cost at large radii.
 pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Located {
     let topology = &atlas.topology;

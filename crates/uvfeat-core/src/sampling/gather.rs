@@ -1,4 +1,4 @@
-//! Gathering a neighbourhood sample by sample (SPEC §1.4, `relocation = per_sample`): each pattern
+//! Gathering a neighbourhood sample by sample (DESIGN.md §1.4, `relocation = per_sample`): each pattern
 //! point is mapped onto the centre's sampling domain, relocated across seams on its own, looked
 //! up, and kept when it lies in the ball.
 
@@ -21,7 +21,7 @@ enum Reached {
     Missing,
 }
 
-/// Where `target`, an offset of the centre, lies (SPEC §1.5 `locate` with the settings' method).
+/// Where `target`, an offset of the centre, lies (DESIGN.md §1.5 `locate` with the settings' method).
 pub(super) fn locate_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Located {
     locate_with(atlas, settings.relocation, centre.uv, Some(&centre.home), centre.chart, target, settings.max_jumps)
 }

@@ -1,4 +1,4 @@
-//! Geodesic distance estimates from the centre `p` to a sample `q` (SPEC §2.5a), used by the
+//! Geodesic distance estimates from the centre `p` to a sample `q` (DESIGN.md §2.5a), used by the
 //! geodesic-disk area of K and the geodesic neighbourhood criterion.
 
 use super::neighbourhood::Centre;
@@ -17,14 +17,14 @@ pub enum Geodesic {
     /// parametric segment from the sample back to the centre, for samples whose segment stays in
     /// the centre's chart (others fall back to [`Geodesic::Arc`]). It follows the
     /// parameterisation's straight line, not a geodesic, so it is not consistent in general
-    /// (SPEC §3.3); for reproduction only.
+    /// (DESIGN.md §3.3); for reproduction only.
     ChordSum,
 }
 
-/// Segments of the chord sum (SPEC §1.10, `N_s`).
+/// Segments of the chord sum (DESIGN.md §1.10, `N_s`).
 pub const CHORD_SEGMENTS: usize = 16;
 
-/// Arc-length geodesic estimate (SPEC §2.5a, `geodesic = "arc"`): the length of the circle arc
+/// Arc-length geodesic estimate (DESIGN.md §2.5a, `geodesic = "arc"`): the length of the circle arc
 /// tangent to the surface at `p` through `q`, `d = rho asin(y)/y`, `y = min(1, |sin alpha|)`.
 pub fn arc_distance(distance: f64, sin_alpha: f64) -> f64 {
     let y = sin_alpha.abs().min(1.0);
@@ -35,7 +35,7 @@ pub fn arc_distance(distance: f64, sin_alpha: f64) -> f64 {
     }
 }
 
-/// Chord-sum estimate (SPEC §2.5a, `geodesic = "chord_sum"`) for a sample at `uv` in the centre's
+/// Chord-sum estimate (DESIGN.md §2.5a, `geodesic = "chord_sum"`) for a sample at `uv` in the centre's
 /// own chart: `sum_j |P(s_{j+1}) - P(s_j)|`, `s_j = uv + j (s - uv) / N_s`. `None` when a point of
 /// the segment is off the centre's chart.
 pub fn chord_sum_distance(atlas: &Atlas, centre: &Centre, uv: DVec2, lookup: Lookup) -> Option<f64> {

@@ -1,4 +1,4 @@
-//! Stage 4 of the pipeline (SPEC §1.4–§1.8): Monte Carlo sampling of the neighbourhood of every
+//! Stage 4 of the pipeline (DESIGN.md §1.4–§1.8): Monte Carlo sampling of the neighbourhood of every
 //! point in parametric space.
 
 mod coverage;

@@ -1,4 +1,4 @@
-//! The weighted neighbourhood of one parametric point (SPEC §1.4, §1.7): its centre, its samples
+//! The weighted neighbourhood of one parametric point (DESIGN.md §1.4, §1.7): its centre, its samples
 //! and their acceptance. A surface point reached from the centre is kept when it lies in the ball
 //! of radius `r`, weighted by the surface area it represents (the gathering itself is in
 //! `gather.rs` and `per_chart.rs`).
@@ -19,7 +19,7 @@ pub enum Criterion {
     /// `|q - p| < r` (default; the paper's).
     #[default]
     Euclidean,
-    /// Geodesic estimate `d(p, q) < r` (SPEC §2.5; see [`Geodesic`]).
+    /// Geodesic estimate `d(p, q) < r` (DESIGN.md §2.5; see [`Geodesic`]).
     Geodesic,
 }
 
@@ -28,9 +28,9 @@ pub enum Criterion {
 pub struct SamplerSettings {
     /// Neighbourhood radius `r` (object units).
     pub radius: f64,
-    /// Ellipse coverage margin `m` (SPEC §3.2; 1.25 default, 1 = paper).
+    /// Ellipse coverage margin `m` (DESIGN.md §3.2; 1.25 default, 1 = paper).
     pub margin: f64,
-    /// Seams a sample may cross (SPEC §1.5; 32 default, 1 = paper).
+    /// Seams a sample may cross (DESIGN.md §1.5; 32 default, 1 = paper).
     pub max_jumps: u32,
     /// How samples that leave the chart are relocated.
     pub relocation: Relocation,
@@ -80,7 +80,7 @@ pub struct Sample {
     pub distance: f64,
     /// `sin(alpha_i) = n . (q_i - p) / rho_i`.
     pub sin_alpha: f64,
-    /// Geodesic distance estimate `d_i` (SPEC §2.5a).
+    /// Geodesic distance estimate `d_i` (DESIGN.md §2.5a).
     pub geodesic: f64,
     /// Index of the pattern point the sample came from.
     pub pattern_index: u32,

@@ -1,4 +1,4 @@
-//! The sample pattern shared by all pixels (SPEC §1.4.2–§1.4.3): a stratified jittered grid
+//! The sample pattern shared by all pixels (DESIGN.md §1.4.2–§1.4.3): a stratified jittered grid
 //! mapped to the unit disk by the Shirley–Chiu concentric map, rotated per pixel by a hashed angle.
 
 use glam::{DMat2, DVec2};
@@ -19,13 +19,13 @@ fn unit(keys: &[u32]) -> f64 {
     f64::from(h) / 4_294_967_296.0
 }
 
-/// Per-pixel rotation `psi = 2 pi hash(i, j, seed) / 2^32` (SPEC §1.4.3).
+/// Per-pixel rotation `psi = 2 pi hash(i, j, seed) / 2^32` (DESIGN.md §1.4.3).
 #[inline]
 pub fn pixel_angle(i: u32, j: u32, seed: u64) -> f64 {
     TAU * unit(&[i, j, seed as u32, (seed >> 32) as u32])
 }
 
-/// Where the shared pattern lies at one pixel: turned by the pixel's angle (SPEC §1.4.3) and
+/// Where the shared pattern lies at one pixel: turned by the pixel's angle (DESIGN.md §1.4.3) and
 /// shifted in area radius, `rho^2 -> frac(rho^2 + shift)` (a Cranley–Patterson rotation of the
 /// radial strata). The turn alone leaves the radii of the pattern the same at every pixel, so the
 /// number of samples inside any circle is the same everywhere: on a plane at r = 0.1 the
@@ -114,7 +114,7 @@ pub const TURNS: usize = 8;
 /// `n` points of the unit disk: `n / 8` base points, stratified in area (`rho^2`) and spread in
 /// angle over one 45-degree sector, each turned by every multiple of 45 degrees (the `n mod 8`
 /// remaining points are turned copies too, see [`leftover_points`]). `stage` selects independent jitters
-/// (the two halves of adaptive sampling, SPEC §1.8, use stages 1 and 2; full sampling stage 0).
+/// (the two halves of adaptive sampling, DESIGN.md §1.8, use stages 1 and 2; full sampling stage 0).
 ///
 /// Why turns: the ellipse maps the disk onto the tangent plane isometrically (up to scale), and
 /// the normal curvature `kappa_n(phi) = H + (k1 - k2)/2 cos 2(phi - phi_1)` carries the
@@ -162,7 +162,7 @@ fn leftover_points(count: usize, seed: u64, stage: u32) -> Vec<DVec2> {
         .collect()
 }
 
-/// `n` stratified, jittered points of the unit disk (SPEC §1.4.2).
+/// `n` stratified, jittered points of the unit disk (DESIGN.md §1.4.2).
 pub fn stratified_disk(n: usize, seed: u64, stage: u32) -> Vec<DVec2> {
     let (nx, ny) = grid_shape(n);
     let (s0, s1) = (seed as u32, (seed >> 32) as u32);

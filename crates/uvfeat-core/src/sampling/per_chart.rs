@@ -1,11 +1,11 @@
-//! The paper's per-chart pattern repetition (SPEC §1.6, `relocation = per_chart`, GPU-friendly):
+//! The paper's per-chart pattern repetition (DESIGN.md §1.6, `relocation = per_chart`, GPU-friendly):
 //! instead of relocating every sample that leaves the chart, the centre is carried once into each
 //! chart across the seams its samples reach, and the whole pattern is evaluated again there,
 //! keeping only the samples that land in that chart. One jump deep, as in the paper.
 //!
 //! Departure: a chart that borders itself (the seam of a latitude-longitude or torus chart) is
-//! repeated across that seam too; the SPEC's "excluding visited charts" would drop every sample
-//! beyond such a seam. As in the paper, each chart is entered through one seam only (the border
+//! repeated across that seam too; the original contract's "excluding visited charts" (DESIGN.md
+//! §1.6, D15) would drop every sample beyond such a seam. As in the paper, each chart is entered through one seam only (the border
 //! texel closest to the centre), so near a corner where two seams to the same chart meet, the
 //! samples beyond the farther one are lost.
 
@@ -89,7 +89,7 @@ pub fn gather_per_chart(
 }
 
 /// The border texel where the march from the centre towards `target` first leaves the chart
-/// (SPEC §1.5's march, stopped at its first crossing).
+/// (DESIGN.md §1.5's march, stopped at its first crossing).
 fn exit_texel(atlas: &Atlas, centre: &Centre, target: DVec2) -> Option<usize> {
     let last_inside = last_inside(atlas, centre.uv, target, centre.chart).unwrap_or(target);
     let texel = border_texel(atlas, last_inside, centre.chart)?;

@@ -21,7 +21,7 @@ pub struct Reach {
 }
 
 impl Reach {
-    /// The same margin in every direction (the plain ellipse of SPEC §1.4.3).
+    /// The same margin in every direction (the plain ellipse of DESIGN.md §1.4.3).
     pub fn uniform(margin: f64) -> Self {
         Self { margins: [margin; DIRECTIONS] }
     }

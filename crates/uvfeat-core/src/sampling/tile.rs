@@ -1,5 +1,5 @@
 //! The weighted neighbourhood samples of many texels at once, as flat arrays, for user-defined
-//! operators `F(p, S(p))` (SPEC §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
+//! operators `F(p, S(p))` (DESIGN.md §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
 use super::coverage::gather_covering;
 use super::neighbourhood::{centre_at, Sample, SamplerSettings};

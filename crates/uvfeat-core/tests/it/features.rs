@@ -1,4 +1,4 @@
-//! SPEC §5.9 acceptance checks against analytic truth, on the single-chart parameterisations
+//! DESIGN.md §5.9 acceptance checks against analytic truth, on the single-chart parameterisations
 //! (the multi-chart xatlas checks run in the Python suite).
 
 use crate::support::{atlas, median};

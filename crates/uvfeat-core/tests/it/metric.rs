@@ -1,4 +1,4 @@
-//! SPEC §1.3.3: per-texel distortion equals the first fundamental form of the parameterisation.
+//! DESIGN.md §1.3.3: per-texel distortion equals the first fundamental form of the parameterisation.
 
 use crate::support::atlas;
 use glam::{DVec2, DVec3};

@@ -1,4 +1,4 @@
-//! SPEC §1.3.1–§1.3.2: coverage is exact at texel centres, complete and connected per chart.
+//! DESIGN.md §1.3.1–§1.3.2: coverage is exact at texel centres, complete and connected per chart.
 
 use crate::support::{atlas, barycentric, interpolate};
 use glam::DVec3;

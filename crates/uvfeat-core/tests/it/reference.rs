@@ -1,4 +1,4 @@
-//! The object-space reference (SPEC §5.1) against analytic truth.
+//! The object-space reference (DESIGN.md §5.1) against analytic truth.
 //!
 //! Tolerances, and why the mesh allows no tighter ones:
 //! - the ratio estimator of H and the volumes is exact on spheres for any sample set, so the unit
@@ -9,7 +9,7 @@
 //! - the exact-geodesic K is exact on flat and developable meshes (plane, cylinder: |K| < 1e-6),
 //!   equals the finite-radius value `1 - r^2 / 30` of the geodesic-disk formula on the sphere
 //!   within 0.01, and is within 2 % on both torus equators at `r = 0.2`;
-//! - the paper's edge-path K is checked to be as biased as SPEC §3.5 reports (K >> 1 on the sphere,
+//! - the paper's edge-path K is checked to be as biased as DESIGN.md §3.5 reports (K >> 1 on the sphere,
 //!   K >> 0 on the plane), so a change of its distance would show.
 
 use std::f64::consts::PI;

@@ -1,4 +1,4 @@
-//! SPEC §1.2.5, §1.3.4, §1.5: adjacency and transition maps carry points across seams and back.
+//! DESIGN.md §1.2.5, §1.3.4, §1.5: adjacency and transition maps carry points across seams and back.
 
 use crate::support::atlas;
 use glam::{DVec2, DVec3};
@@ -80,7 +80,7 @@ fn self_adjacent_seams_round_trip_on_torus_and_sphere() {
 
 #[test]
 fn transition_map_is_an_isometry_of_the_flat_plane() {
-    // On a plane, a 3D offset crossing the seam must keep its length (SPEC §3.5 check).
+    // On a plane, a 3D offset crossing the seam must keep its length (DESIGN.md §3.5 check).
     let atlas = atlas(&split_plane(16, true), 1024);
     let start = DVec2::new(0.05 + 0.8 * 0.45, 0.05 + 0.9 * 0.5); // 3D (0.45, 0.5)
     let p = surface_point(&atlas, start, 0).unwrap().position;
