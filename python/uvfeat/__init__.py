@@ -33,7 +33,8 @@ from .errors import (
     UVError,
     UVWarning,
 )
-from .features import FEATURES, FeatureMap
+from .features import FeatureMap
+from .options import FEATURES
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 

@@ -17,6 +17,7 @@ import numpy as np
 from . import _core
 from .errors import InvalidParameterError, ResolutionTooLargeError
 from .mesh import Mesh, _readonly
+from .options import check_resolution
 
 PRECISIONS = ("f32", "f16")
 
@@ -27,13 +28,6 @@ def memory_budget() -> int:
         return int(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")) // 2
     except (ValueError, OSError, AttributeError):
         return 8 << 30
-
-
-def check_resolution(resolution, name: str = "resolution") -> int:
-    """A positive integer resolution, or a clear error."""
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) or resolution <= 0:
-        raise InvalidParameterError(f"{name} must be a positive integer, got {resolution!r}")
-    return int(resolution)
 
 
 class Location(NamedTuple):

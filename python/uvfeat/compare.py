@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import __version__
+from ._core import __version__
 from .mesh import Mesh
 
 #: Gaussian-curvature methods ``compare`` accepts; the parametric side has no exact geodesics
@@ -73,7 +73,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = 256, resolution: int
     ``radius`` (object units or ``"2%"``) and measures both."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
-    from .features import feature_names
+    from .options import feature_names
     from .reference import Reference
 
     names = feature_names(features)

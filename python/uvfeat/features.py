@@ -8,7 +8,6 @@ length³ for the sphere volumes; shape index in [-1, 1] (+1 convex cap).
 
 from __future__ import annotations
 
-import re
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -17,82 +16,7 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
-
-#: Every feature name, in output order.
-FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature", "gaussian_curvature",
-            "k1", "k2", "shape_index", "curvedness")
-
-#: Options of ``compute`` beyond the named arguments, with the DESIGN.md §1.10 defaults.
-DEFAULT_OPTIONS = {
-    "margin": 1.25,
-    "grow_margin": True,
-    "max_jumps": 32,
-    "relocation": "walk",
-    "criterion": "euclidean",
-    "lookup": "triangle",
-    "geodesic": "arc",
-    "sampling": "fast",
-    "gaussian_method": "moments",
-    "method": "integral",
-    "volume_weighting": "distance",
-    "rho_min": 0.1,
-    "flat_tol": 1e-3,
-    "tau": 0.01,
-    "standard_error": False,
-    "query": "texture",
-}
-
-#: What ``paper_mode=True`` changes (DESIGN.md §1.10). The paper's f16 buffers belong to the atlas:
-#: ``Atlas(mesh, precision="f16")``.
-PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "relocation": "per_chart", "lookup": "bilinear",
-                 "geodesic": "chord_sum", "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
-
-
-def feature_names(features) -> list[str]:
-    """A list of valid feature names from a name, a comma-separated string, a list, or "all"."""
-    if isinstance(features, str):
-        features = FEATURES if features == "all" else [f.strip() for f in features.split(",") if f.strip()]
-    features = list(features)
-    unknown = [f for f in features if f not in FEATURES]
-    if unknown or not features:
-        raise InvalidParameterError(f"unknown feature(s) {unknown or features}; valid: {', '.join(FEATURES)} (or 'all')")
-    return list(dict.fromkeys(features))
-
-
-def resolve_radius(radius, diagonal: float) -> float:
-    """A radius in object units from a number or a percentage string of the bounding-box diagonal
-    (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
-    if isinstance(radius, str):
-        match = re.fullmatch(r"\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(%?)\s*", radius)
-        if not match:
-            raise InvalidParameterError(f"radius {radius!r}: give a length or a percentage of the diagonal like '2%'")
-        value = float(match.group(1)) * (diagonal / 100.0 if match.group(2) else 1.0)
-    elif isinstance(radius, (int, float, np.floating, np.integer)) and not isinstance(radius, bool):
-        value = float(radius)
-    else:
-        raise InvalidParameterError(f"radius must be a number or a string like '2%', got {radius!r}")
-    if not np.isfinite(value) or value <= 0:
-        raise InvalidParameterError(f"radius must be a positive, finite length, got {radius!r}")
-    if value > diagonal:
-        raise InvalidParameterError(f"radius {value:g} is larger than the mesh (bounding-box diagonal {diagonal:g}); "
-                                    "every neighbourhood would be the whole mesh")
-    return value
-
-
-def resolve_options(options: dict, paper_mode: bool) -> dict:
-    """Defaults, then the paper's choices, then the caller's options; unknown names are errors."""
-    unknown = sorted(set(options) - set(DEFAULT_OPTIONS))
-    if unknown:
-        raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(sorted(DEFAULT_OPTIONS))}")
-    resolved = dict(DEFAULT_OPTIONS)
-    if paper_mode:
-        resolved.update(PAPER_OPTIONS)
-        warnings.warn("paper_mode: the paper's choices (margin 1, per-chart repetition with one jump, bilinear "
-                      "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
-                      "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=3)
-    resolved.update(options)
-    return resolved
-
+from .options import DEFAULT_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
 
 @dataclass
 class FeatureMap:
@@ -177,8 +101,6 @@ def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
 
 def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):
     """Core settings for neighbourhood tiles (no estimator is run, so any feature name will do)."""
-    from .atlas import check_resolution
-
     opts = resolve_options(options, paper_mode=False)
     r = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
     resolution = check_resolution(compute_resolution, "compute_resolution")
@@ -188,8 +110,6 @@ def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, opti
 def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,
                  paper_mode: bool, options: dict) -> dict[str, FeatureMap]:
     """The work behind :meth:`uvfeat.Atlas.compute`."""
-    from .atlas import check_resolution
-
     names = feature_names(features)
     opts = resolve_options(options, paper_mode)
     diagonal = atlas.mesh.bounding_box_diagonal

@@ -24,7 +24,7 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
-from .features import feature_names, resolve_radius
+from .options import feature_names, resolve_radius
 from .mesh import Mesh
 
 #: Gaussian-curvature methods of the reference.

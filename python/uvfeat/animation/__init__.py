@@ -9,6 +9,6 @@ evaluates a glTF animation into positions on its own.
 from .animate import Animation, AnimationFrame, animate
 from .gltf import GltfAnimation
 from .interpolation import Channel, slerp
-from .sources import DEFAULT_FPS
+from .frame_rate import DEFAULT_FPS
 
 __all__ = ["Animation", "AnimationFrame", "Channel", "DEFAULT_FPS", "GltfAnimation", "animate", "slerp"]

@@ -12,7 +12,8 @@ import numpy as np
 
 from ..atlas import Atlas
 from ..errors import AnimationError
-from ..features import FeatureMap, feature_names, resolve_options, resolve_radius
+from ..features import FeatureMap
+from ..options import feature_names, resolve_options, resolve_radius
 from ..mesh import Mesh
 from .sources import frame_source
 

@@ -17,7 +17,7 @@ from ..errors import AnimationError, MeshFileError
 from .accessors import Accessors, read_gltf
 from .interpolation import Channel
 from .scene import Pose, SceneGraph
-from .sources import check_fps
+from .frame_rate import check_fps
 
 #: Numbers per key of each animated property.
 PATH_WIDTHS = {"translation": 3, "rotation": 4, "scale": 3}

@@ -10,21 +10,11 @@ import numpy as np
 
 from ..errors import AnimationError, MeshFileError
 from ..mesh import Mesh
+from .frame_rate import check_fps
 
-#: Frame rate used when none is given (frame times, and sampling a glTF animation).
-DEFAULT_FPS = 24.0
 
 #: File formats that carry their own animation.
 ANIMATED_FORMATS = (".glb", ".gltf")
-
-
-def check_fps(fps) -> float:
-    if fps is None:
-        return DEFAULT_FPS
-    if isinstance(fps, bool) or not isinstance(fps, (int, float, np.integer, np.floating)) or not np.isfinite(fps) \
-            or fps <= 0:
-        raise AnimationError(f"fps must be a positive number, got {fps!r}")
-    return float(fps)
 
 
 class ArrayFrames:

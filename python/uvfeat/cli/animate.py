@@ -3,16 +3,19 @@ animated GIF of each feature map."""
 
 from __future__ import annotations
 
-import json
 import os
 import time
 import warnings
 
 import numpy as np
 
+from .._core import __version__
+from ..errors import InvalidParameterError
+from ..writers import write_json
+from .common import add_atlas_options, add_feature_options, console
 
-def add_command(commands, add_atlas_options, add_feature_options) -> None:
-    """Registers ``uvfeat animate`` on the CLI's sub-command parsers."""
+
+def add_command(commands) -> None:
     parser = commands.add_parser(
         "animate", help="features of every frame of an animation (glTF skins/morphs, mesh files or a .npy array)",
         description="Writes frame_NNNN.npz (time, positions, per-vertex features), FEATURE_NNNN.npy and .png maps "
@@ -39,24 +42,21 @@ def _frames_argument(frames: list[str] | None):
     return frames
 
 
-def _progress(console):
+def _progress(out):
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
     return Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
                     TextColumn("{task.fields[rate]:.2f} frames/s"), TimeElapsedColumn(), TimeRemainingColumn(),
-                    console=console, transient=True, disable=not console.is_terminal)
+                    console=out, transient=True, disable=not out.is_terminal)
 
 
 def run(args) -> int:
     from PIL import Image
 
-    from .. import __version__
-    from ..cli import _console
-    from ..errors import InvalidParameterError
+    from ..animation.animate import animate
     from ..images import colour_range, feature_picture, save_gif
-    from .animate import animate
 
-    console, started = _console(), time.perf_counter()
+    out, started = console(), time.perf_counter()
     if "," in args.radius:
         raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
     with warnings.catch_warnings(record=True) as caught:
@@ -69,7 +69,7 @@ def run(args) -> int:
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
     os.makedirs(args.out, exist_ok=True)
     ranges, pictures, per_frame = {}, {name: [] for name in frames.features}, []
-    with _progress(console) as progress:
+    with _progress(out) as progress:
         task = progress.add_task(f"{frames.mesh.name}: {', '.join(frames.features)}", total=total, rate=0.0)
         playing = time.perf_counter()
         for frame in (frames.frame(k) for k in range(total)):
@@ -98,13 +98,12 @@ def run(args) -> int:
         "timings": {"once_s": frames.atlas.timings, "mean_per_frame_ms": mean_ms, "per_frame": per_frame,
                     "total_s": time.perf_counter() - started},
     }
-    with open(os.path.join(args.out, "summary.json"), "w") as f:
-        json.dump(summary, f, indent=2, default=float)
+    write_json(os.path.join(args.out, "summary.json"), summary)
     what = f"animation {frames.animation_name!r} of " if frames.animation_name else ""
-    console.print(f"{what}{frames.mesh.name}: {total} frames, {mean_ms.get('total_ms', 0.0):.0f} ms per frame "
+    out.print(f"{what}{frames.mesh.name}: {total} frames, {mean_ms.get('total_ms', 0.0):.0f} ms per frame "
                   f"(buffers {mean_ms.get('update_ms', 0.0):.0f} ms, features {mean_ms.get('features_ms', 0.0):.0f} ms)")
     for note in notes:
-        console.print(f"[yellow]note:[/yellow] {note}")
-    console.print(f"wrote frame_*.npz, per-frame maps .npy/.png, {', '.join(f + '.gif' for f in frames.features)} "
+        out.print(f"[yellow]note:[/yellow] {note}")
+    out.print(f"wrote frame_*.npz, per-frame maps .npy/.png, {', '.join(f + '.gif' for f in frames.features)} "
                   f"and summary.json to {args.out}")
     return 0

@@ -1,0 +1,42 @@
+"""The ``uvfeat`` command line, one module per command: ``uvfeat atlas``, ``compute``,
+``compare``, ``animate``, ``demo``. Run ``uvfeat --help``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .._core import __version__
+from ..errors import UvfeatError
+from . import animate, atlas, compare, compute, demo
+from .common import console
+
+COMMANDS = (atlas, compute, compare, animate, demo)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="uvfeat", description="Multi-scale geometric features of triangle meshes, "
+                                     "computed in UV parameter space.")
+    parser.add_argument("--version", action="version", version=f"uvfeat {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for command in COMMANDS:
+        command.add_command(commands)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    for option in ("resolution", "compute_resolution"):
+        if getattr(args, option, 1) <= 0:
+            console().print(f"[red]error:[/red] --{option.replace('_', '-')} must be a positive integer, "
+                            f"got {getattr(args, option)}")
+            return 2
+    try:
+        return args.handler(args)
+    except UvfeatError as exc:
+        console().print(f"[red]error:[/red] {exc}")
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

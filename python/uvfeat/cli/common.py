@@ -1,0 +1,104 @@
+"""What the commands share: the console, progress over named steps, loading a mesh with its
+notes, and the options several commands take."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import time
+import warnings
+
+MESH_HELP = "mesh file (obj, ply, glb, gltf, off, stl)"
+
+
+def console():
+    from rich.console import Console
+
+    return Console(stderr=True)
+
+
+@contextlib.contextmanager
+def steps(out, total: int):
+    """A progress bar over named steps; yields ``advance(description)``."""
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    progress = Progress(TextColumn("{task.description:<28}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+                        TimeElapsedColumn(), console=out, transient=True, disable=not out.is_terminal)
+    with progress:
+        task = progress.add_task("starting", total=total)
+
+        def advance(description: str, done: bool = True):
+            progress.update(task, description=description, advance=1 if done else 0)
+
+        yield advance
+
+
+def load_mesh(path: str, args):
+    """The mesh at ``path`` loaded with the command's UV options, and its warnings as notes."""
+    from ..io import load
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mesh = load(path, uv=args.uv, resolution=args.resolution, normalize_uv=not args.strict_uv)
+    return mesh, [str(w.message) for w in caught]
+
+
+def on_file(writer):
+    """A command that loads ``args.mesh`` and hands it to ``writer(mesh, args, console, notes, started)``."""
+
+    def command(args) -> int:
+        started = time.perf_counter()
+        mesh, notes = load_mesh(args.mesh, args)
+        writer(mesh, args, console(), notes, started)
+        return 0
+
+    return command
+
+
+def radius_tag(radius) -> str:
+    """A radius as written in file names: ``2%`` -> ``2pct``, ``0.05`` -> ``0p05``."""
+    return str(radius).strip().replace("%", "pct").replace(".", "p")
+
+
+def print_notes_and_outputs(out, notes: list[str], written: str, folder: str) -> None:
+    for note in notes:
+        out.print(f"[yellow]note:[/yellow] {note}")
+    out.print(f"wrote {written} to {folder}")
+
+
+def add_atlas_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--resolution", type=int, default=1024, help="geometry-buffer size W_g in texels (default 1024)")
+    parser.add_argument("--out", default="uvfeat-out", help="output folder (created if missing)")
+
+
+def add_uv_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto",
+                        help="auto: use the file's UVs, xatlas when there are none (default); require: fail "
+                        "without UVs; xatlas: always build a new atlas")
+    parser.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising them")
+
+
+def add_feature_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--samples", type=int, default=256, help="Monte Carlo samples per texel (default 256)")
+    parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
+    parser.add_argument("--method", choices=("integral", "fit"), default="integral",
+                        help="curvature estimators: integral invariants or the osculating-circle fit (adds principal "
+                        "directions)")
+    parser.add_argument("--sampling", choices=("fast", "exact"), default="fast",
+                        help="sampler: the fast path (default) or the exact path it is checked against")
+
+
+def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:
+    """Arguments shared by the commands that compute features on a mesh file."""
+    from ..options import FEATURES
+
+    parser.add_argument("mesh", help=MESH_HELP)
+    parser.add_argument("--feature", default="mean_curvature",
+                        help="comma-separated names, or 'all' (" + ", ".join(FEATURES) + ")")
+    parser.add_argument("--radius", default="2%", help="radius in object units or %% of the bounding-box diagonal"
+                        f"{radius_note} (default 2%%)")
+    add_atlas_options(parser)
+    add_feature_options(parser)
+    add_uv_options(parser)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")

@@ -1,0 +1,94 @@
+"""Names, defaults and validation of the options of a feature computation: the feature names,
+the radius (a length or a percentage of the bounding-box diagonal, resolved once), the
+resolutions, and the options of ``Atlas.compute`` with their defaults and the paper's choices."""
+
+from __future__ import annotations
+
+import re
+import warnings
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+#: Every feature name, in output order.
+FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature", "gaussian_curvature",
+            "k1", "k2", "shape_index", "curvedness")
+
+#: Options of ``compute`` beyond the named arguments, with the DESIGN.md §1.10 defaults.
+DEFAULT_OPTIONS = {
+    "margin": 1.25,
+    "grow_margin": True,
+    "max_jumps": 32,
+    "relocation": "walk",
+    "criterion": "euclidean",
+    "lookup": "triangle",
+    "geodesic": "arc",
+    "sampling": "fast",
+    "gaussian_method": "moments",
+    "method": "integral",
+    "volume_weighting": "distance",
+    "rho_min": 0.1,
+    "flat_tol": 1e-3,
+    "tau": 0.01,
+    "standard_error": False,
+    "query": "texture",
+}
+
+#: What ``paper_mode=True`` changes (DESIGN.md §1.10). The paper's f16 buffers belong to the atlas:
+#: ``Atlas(mesh, precision="f16")``.
+PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "relocation": "per_chart", "lookup": "bilinear",
+                 "geodesic": "chord_sum", "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
+
+
+def feature_names(features) -> list[str]:
+    """A list of valid feature names from a name, a comma-separated string, a list, or "all"."""
+    if isinstance(features, str):
+        features = FEATURES if features == "all" else [f.strip() for f in features.split(",") if f.strip()]
+    features = list(features)
+    unknown = [f for f in features if f not in FEATURES]
+    if unknown or not features:
+        raise InvalidParameterError(f"unknown feature(s) {unknown or features}; valid: {', '.join(FEATURES)} (or 'all')")
+    return list(dict.fromkeys(features))
+
+
+def resolve_radius(radius, diagonal: float) -> float:
+    """A radius in object units from a number or a percentage string of the bounding-box diagonal
+    (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
+    if isinstance(radius, str):
+        match = re.fullmatch(r"\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(%?)\s*", radius)
+        if not match:
+            raise InvalidParameterError(f"radius {radius!r}: give a length or a percentage of the diagonal like '2%'")
+        value = float(match.group(1)) * (diagonal / 100.0 if match.group(2) else 1.0)
+    elif isinstance(radius, (int, float, np.floating, np.integer)) and not isinstance(radius, bool):
+        value = float(radius)
+    else:
+        raise InvalidParameterError(f"radius must be a number or a string like '2%', got {radius!r}")
+    if not np.isfinite(value) or value <= 0:
+        raise InvalidParameterError(f"radius must be a positive, finite length, got {radius!r}")
+    if value > diagonal:
+        raise InvalidParameterError(f"radius {value:g} is larger than the mesh (bounding-box diagonal {diagonal:g}); "
+                                    "every neighbourhood would be the whole mesh")
+    return value
+
+
+def resolve_options(options: dict, paper_mode: bool) -> dict:
+    """Defaults, then the paper's choices, then the caller's options; unknown names are errors."""
+    unknown = sorted(set(options) - set(DEFAULT_OPTIONS))
+    if unknown:
+        raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(sorted(DEFAULT_OPTIONS))}")
+    resolved = dict(DEFAULT_OPTIONS)
+    if paper_mode:
+        resolved.update(PAPER_OPTIONS)
+        warnings.warn("paper_mode: the paper's choices (margin 1, per-chart repetition with one jump, bilinear "
+                      "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
+                      "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=3)
+    resolved.update(options)
+    return resolved
+
+
+def check_resolution(resolution, name: str = "resolution") -> int:
+    """A positive integer resolution, or a clear error."""
+    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) or resolution <= 0:
+        raise InvalidParameterError(f"{name} must be a positive integer, got {resolution!r}")
+    return int(resolution)
