@@ -64,7 +64,7 @@ def test_paper_mode_switches_every_choice():
         maps = uvfeat.Atlas(mesh, 1024, precision="f16").compute(["mean_curvature"], 0.15, compute_resolution=128,
                                                                  paper_mode=True)
     settings = maps["mean_curvature"].settings
-    for name, value in uvfeat.features.PAPER_OPTIONS.items():
+    for name, value in uvfeat.options.PAPER_OPTIONS.items():
         assert settings[name] == value, name
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

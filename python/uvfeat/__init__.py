@@ -17,7 +17,7 @@ Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward norm
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
 """
 
-from . import errors, examples, reference, shapes
+from . import compare, errors, examples, options, reference, shapes
 from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
@@ -62,9 +62,11 @@ __all__ = [
     "UvfeatError",
     "__version__",
     "animate",
+    "compare",
     "errors",
     "examples",
     "load",
+    "options",
     "reference",
     "shapes",
 ]

@@ -16,6 +16,10 @@ __all__ = [
     "ComputeSettings",
     "FeatureMaps",
     "compute_settings",
+    "feature_names",
+    "default_options",
+    "paper_options",
+    "option_choices_by_name",
     "compute_maps",
     "neighbourhood_tile_arrays",
     "ReferenceMesh",
@@ -137,15 +141,19 @@ class FeatureMaps:
     def summary(self) -> dict[str, Any]: ...
     def per_vertex(self, atlas: Atlas, query: str) -> list[NDArray[np.float32]]: ...
 
-def compute_settings(
-    features: list[str],
-    radius: float,
-    samples: int,
-    compute_resolution: int,
-    adaptive: bool,
-    seed: int,
-    options: dict[str, Any],
-) -> ComputeSettings: ...
+def compute_settings(features: list[str], radius: float, options: dict[str, Any]) -> ComputeSettings: ...
+def feature_names() -> list[str]:
+    """Every feature name, in output order."""
+
+def default_options() -> dict[str, Any]:
+    """Every option of a feature computation with its default, in order."""
+
+def paper_options() -> dict[str, Any]:
+    """The options the paper's choices change, with the paper's values."""
+
+def option_choices_by_name() -> dict[str, list[str]]:
+    """The names each choice option takes, the default first."""
+
 def compute_maps(atlas: Atlas, settings: ComputeSettings) -> FeatureMaps: ...
 def neighbourhood_tile_arrays(
     atlas: Atlas, settings: ComputeSettings, start: int, stop: int

@@ -17,6 +17,7 @@ import numpy as np
 
 from ._core import __version__
 from .mesh import Mesh
+from .options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS
 
 #: Gaussian-curvature methods ``compare`` accepts; the parametric side has no exact geodesics
 #: and uses its geodesic-area estimator when the reference uses ``exact_geodesic_area``.
@@ -65,9 +66,9 @@ class Comparison:
                 "errors": self.errors, "timings_s": self.timings}
 
 
-def compare(mesh: Mesh, features, radius, *, samples: int = 256, resolution: int = 1024, compute_resolution: int = 512,
-            gaussian_method: str = "moments", seed: int = 0, query: str = "texture",
-            method: str = "integral", sampling: str = "fast") -> Comparison:
+def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"], resolution: int = 1024, compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+            gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"], query: str = DEFAULT_OPTIONS["query"],
+            method: str = DEFAULT_OPTIONS["method"], sampling: str = DEFAULT_OPTIONS["sampling"]) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
     ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"fast"`` or ``"exact"``) and the object-space reference on ``mesh`` for ``features`` at
     ``radius`` (object units or ``"2%"``) and measures both."""

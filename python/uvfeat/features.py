@@ -16,7 +16,7 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
-from .options import DEFAULT_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
+from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
 
 @dataclass
 class FeatureMap:
@@ -94,9 +94,11 @@ class FeatureMap:
 
 
 def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
-    # Each option converted to the type of its default (a user's margin=2 or max_jumps=8.0).
-    core_options = {name: type(default)(opts[name]) for name, default in DEFAULT_OPTIONS.items() if name != "query"}
-    return _core.compute_settings(names, radius, int(samples), resolution, bool(adaptive), int(seed), core_options)
+    # The core checks every option's kind and range; NumPy scalars become Python numbers first.
+    given = dict(opts, samples=samples, compute_resolution=resolution, adaptive=adaptive, seed=seed)
+    core_options = {name: value.item() if isinstance(value, np.generic) else value for name, value in given.items()
+                    if name not in PER_VERTEX_OPTIONS}
+    return _core.compute_settings(names, radius, core_options)
 
 
 def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):
@@ -115,8 +117,6 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
     diagonal = atlas.mesh.bounding_box_diagonal
     stack = isinstance(radius, (list, tuple, np.ndarray))
     radii = [resolve_radius(r, diagonal) for r in (radius if stack else [radius])]
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 4:
-        raise InvalidParameterError(f"samples must be an integer >= 4, got {samples!r}")
     compute_resolution = check_resolution(compute_resolution, "compute_resolution")
     if paper_mode and atlas.precision != "f16":
         warnings.warn("paper_mode: the paper stores buffers as half floats; build the Atlas with precision='f16' "

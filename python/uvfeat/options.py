@@ -9,36 +9,29 @@ import warnings
 
 import numpy as np
 
+from . import _core
 from .errors import InvalidParameterError
 
 #: Every feature name, in output order.
-FEATURES = ("bending_energy", "open_volume", "volume_invariant", "mean_curvature", "gaussian_curvature",
-            "k1", "k2", "shape_index", "curvedness")
+FEATURES = tuple(_core.feature_names())
 
-#: Options of ``compute`` beyond the named arguments, with the DESIGN.md §1.10 defaults.
-DEFAULT_OPTIONS = {
-    "margin": 1.25,
-    "grow_margin": True,
-    "max_jumps": 32,
-    "relocation": "walk",
-    "criterion": "euclidean",
-    "lookup": "triangle",
-    "geodesic": "arc",
-    "sampling": "fast",
-    "gaussian_method": "moments",
-    "method": "integral",
-    "volume_weighting": "distance",
-    "rho_min": 0.1,
-    "flat_tol": 1e-3,
-    "tau": 0.01,
-    "standard_error": False,
-    "query": "texture",
-}
+_CORE_DEFAULTS = _core.default_options()
+
+#: The named arguments of ``Atlas.compute`` and ``uvfeat.compute`` with their defaults.
+ARGUMENT_DEFAULTS = {name: _CORE_DEFAULTS[name] for name in ("samples", "compute_resolution", "adaptive", "seed")}
+
+#: The names each choice option takes, the default first.
+CHOICES = _core.option_choices_by_name()
+
+#: The per-vertex query: a choice of the maps, not of their computation.
+PER_VERTEX_OPTIONS = {"query": CHOICES["query"][0]}
+
+#: Options of ``compute`` beyond the named arguments, with their defaults (DESIGN.md §1.10).
+DEFAULT_OPTIONS = {**{k: v for k, v in _CORE_DEFAULTS.items() if k not in ARGUMENT_DEFAULTS}, **PER_VERTEX_OPTIONS}
 
 #: What ``paper_mode=True`` changes (DESIGN.md §1.10). The paper's f16 buffers belong to the atlas:
 #: ``Atlas(mesh, precision="f16")``.
-PAPER_OPTIONS = {"margin": 1.0, "grow_margin": False, "max_jumps": 1, "relocation": "per_chart", "lookup": "bilinear",
-                 "geodesic": "chord_sum", "gaussian_method": "geodesic_area", "volume_weighting": "uniform"}
+PAPER_OPTIONS = _core.paper_options()
 
 
 def feature_names(features) -> list[str]:

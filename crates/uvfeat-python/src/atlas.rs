@@ -2,28 +2,21 @@
 
 use crate::arrays::{flatten, rows, to_numpy};
 use crate::error::guarded;
+use crate::options::named;
 use crate::topology::PyTopology;
 use glam::{DMat2, DVec2, DVec3};
 use half::f16;
 use numpy::{PyArrayDyn, PyReadonlyArray2};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use uvfeat_core::lookup::surface_point;
+use uvfeat_core::output::Choice;
 use uvfeat_core::relocation::{cross_seam, locate, Located};
 use uvfeat_core::{Atlas, AtlasOptions, Precision};
 
 #[pyclass(name = "Atlas", module = "uvfeat._core")]
 pub struct PyAtlas {
     inner: Atlas,
-}
-
-fn precision_from(name: &str) -> PyResult<Precision> {
-    match name {
-        "f32" => Ok(Precision::F32),
-        "f16" => Ok(Precision::F16),
-        other => Err(PyValueError::new_err(format!("precision must be 'f32' or 'f16', got {other:?}"))),
-    }
 }
 
 fn positions_of(array: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<DVec3>> {
@@ -55,7 +48,7 @@ impl PyAtlas {
         precision: &str,
         memory_budget: u64,
     ) -> PyResult<Self> {
-        let options = AtlasOptions { resolution, precision: precision_from(precision)?, memory_budget };
+        let options = AtlasOptions { resolution, precision: named::<Precision>(precision)?, memory_budget };
         let positions = positions_of(&positions)?;
         let topology = topology.inner.clone();
         let inner = guarded(py, || Atlas::new(topology, &positions, &options))?;
@@ -76,10 +69,7 @@ impl PyAtlas {
 
     #[getter]
     fn precision(&self) -> &'static str {
-        match self.inner.precision {
-            Precision::F32 => "f32",
-            Precision::F16 => "f16",
-        }
+        self.inner.precision.name()
     }
 
     #[getter]

@@ -4,94 +4,24 @@
 use crate::arrays::{flatten, to_numpy};
 use crate::atlas::PyAtlas;
 use crate::error::{guarded, to_py};
+use crate::options::{feature_list, given, named};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use uvfeat_core::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeighting};
-use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::{per_vertex, per_vertex_directions, ComputeSettings, FeatureMaps, VertexQuery};
-use uvfeat_core::relocation::Relocation;
-use uvfeat_core::sampling::{neighbourhood_tile, Criterion, Geodesic, SamplingPath};
-use uvfeat_core::UvfeatError;
+use uvfeat_core::sampling::neighbourhood_tile;
 
-pub(crate) fn choice<T: Copy>(name: &'static str, value: &str, options: &[(&str, T)]) -> PyResult<T> {
-    options.iter().find(|(k, _)| *k == value).map(|(_, v)| *v).ok_or_else(|| {
-        let valid: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
-        to_py(UvfeatError::InvalidParameter { name, reason: format!("{value:?} is not one of {valid:?}") })
-    })
-}
-
-/// Features from their public names.
-pub(crate) fn feature_list(names: &[String]) -> PyResult<Vec<Feature>> {
-    names.iter().map(|f| Feature::from_name(f)).collect::<Result<Vec<_>, _>>().map_err(to_py)
-}
-
-/// The volume weighting of its public name.
-pub(crate) fn volume_weighting_named(value: &str) -> PyResult<VolumeWeighting> {
-    choice("volume_weighting", value, &[("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)])
-}
-
-/// The curvature method of its public name.
-pub(crate) fn curvature_method_named(value: &str) -> PyResult<CurvatureMethod> {
-    choice("method", value, &[("integral", CurvatureMethod::Integral), ("fit", CurvatureMethod::Fit)])
-}
-
-/// The entry `name` of the options dictionary.
-fn item<'py>(options: &Bound<'py, PyDict>, name: &'static str) -> PyResult<Bound<'py, PyAny>> {
-    options
-        .get_item(name)?
-        .ok_or_else(|| to_py(UvfeatError::InvalidParameter { name, reason: "missing from the options".into() }))
-}
-
-/// Builds and validates core settings from the Python arguments; `options` holds every option of
-/// `uvfeat.features.DEFAULT_OPTIONS`, already converted to bool, int, float or str.
+/// Builds and validates core settings: `options` maps option names (those of
+/// `default_options()`: the sample count, resolution, seed and adaptive flag included) to bool,
+/// number or name values; options left out keep their defaults.
 #[pyfunction]
-#[pyo3(signature = (features, radius, samples, compute_resolution, adaptive, seed, options))]
-pub fn compute_settings(
-    features: Vec<String>,
-    radius: f64,
-    samples: usize,
-    compute_resolution: usize,
-    adaptive: bool,
-    seed: u64,
-    options: &Bound<'_, PyDict>,
-) -> PyResult<PySettings> {
-    let text = |name: &'static str| -> PyResult<String> { item(options, name)?.extract::<String>() };
-    let number = |name: &'static str| -> PyResult<f64> { item(options, name)?.extract::<f64>() };
-    let flag = |name: &'static str| -> PyResult<bool> { item(options, name)?.extract::<bool>() };
+#[pyo3(signature = (features, radius, options))]
+pub fn compute_settings(features: Vec<String>, radius: f64, options: &Bound<'_, PyDict>) -> PyResult<PySettings> {
     let mut s = ComputeSettings::new(feature_list(&features)?, radius);
-    s.samples = samples;
-    s.resolution = compute_resolution;
-    s.adaptive = adaptive;
-    s.seed = seed;
-    s.tau = number("tau")?;
-    s.margin = number("margin")?;
-    s.grow_margin = flag("grow_margin")?;
-    s.max_jumps = item(options, "max_jumps")?.extract::<u32>()?;
-    s.relocation = choice(
-        "relocation",
-        &text("relocation")?,
-        &[("walk", Relocation::Walk), ("march", Relocation::March), ("per_chart", Relocation::PerChart)],
-    )?;
-    s.criterion = choice(
-        "criterion",
-        &text("criterion")?,
-        &[("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)],
-    )?;
-    s.lookup = choice("lookup", &text("lookup")?, &[("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)])?;
-    s.geodesic = choice("geodesic", &text("geodesic")?, &[("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)])?;
-    s.sampling =
-        choice("sampling", &text("sampling")?, &[("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)])?;
-    s.gaussian_method = choice(
-        "gaussian_method",
-        &text("gaussian_method")?,
-        &[("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)],
-    )?;
-    s.volume_weighting = volume_weighting_named(&text("volume_weighting")?)?;
-    s.method = curvature_method_named(&text("method")?)?;
-    s.rho_min_fraction = number("rho_min")?;
-    s.flat_tol = number("flat_tol")?;
-    s.standard_errors = flag("standard_error")?;
+    for (key, value) in options.iter() {
+        let name: String = key.extract()?;
+        s.set_option(&name, &given(&name, &value)?).map_err(to_py)?;
+    }
     s.validate().map_err(to_py)?;
     Ok(PySettings { inner: s })
 }
@@ -202,7 +132,7 @@ impl PyFeatureMaps {
         atlas: &PyAtlas,
         query: &str,
     ) -> PyResult<Vec<Bound<'py, PyArrayDyn<f32>>>> {
-        let query = choice("query", query, &[("texture", VertexQuery::Texture), ("direct", VertexQuery::Direct)])?;
+        let query: VertexQuery = named(query)?;
         let (maps, settings, core) = (&self.inner, &self.settings, atlas.core());
         let values = guarded(py, || Ok(per_vertex(core, maps, settings, query)))?;
         values.into_iter().map(|v| to_numpy(py, v.clone(), &[v.len()])).collect()

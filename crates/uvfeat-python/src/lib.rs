@@ -5,6 +5,7 @@ mod arrays;
 mod atlas;
 mod error;
 mod features;
+mod options;
 mod reference;
 mod shapes;
 mod topology;
@@ -18,6 +19,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::buffer_bytes, m)?)?;
+    m.add_function(wrap_pyfunction!(options::feature_names, m)?)?;
+    m.add_function(wrap_pyfunction!(options::default_options, m)?)?;
+    m.add_function(wrap_pyfunction!(options::paper_options, m)?)?;
+    m.add_function(wrap_pyfunction!(options::option_choices_by_name, m)?)?;
     m.add_class::<features::PySettings>()?;
     m.add_class::<features::PyFeatureMaps>()?;
     m.add_function(wrap_pyfunction!(features::compute_settings, m)?)?;

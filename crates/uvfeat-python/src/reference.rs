@@ -2,10 +2,10 @@
 
 use crate::arrays::{rows, to_numpy};
 use crate::error::guarded;
-use crate::features::{choice, curvature_method_named, feature_list, volume_weighting_named};
+use crate::options::{feature_list, named};
 use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use uvfeat_core::reference::{ReferenceGaussian, ReferenceMesh, ReferenceSettings};
+use uvfeat_core::reference::{ReferenceMesh, ReferenceSettings};
 
 /// A mesh welded and connected for the reference (the untimed half-edge step).
 #[pyclass(name = "ReferenceMesh", module = "uvfeat._core", frozen)]
@@ -59,19 +59,11 @@ impl PyReferenceMesh {
         vertices: Option<PyReadonlyArray1<'_, i64>>,
     ) -> PyResult<PerVertex<'py>> {
         let mut settings = ReferenceSettings::new(feature_list(&features)?, radius);
-        settings.gaussian_method = choice(
-            "gaussian_method",
-            gaussian_method,
-            &[
-                ("moments", ReferenceGaussian::Moments),
-                ("geodesic_area", ReferenceGaussian::GeodesicArea),
-                ("exact_geodesic_area", ReferenceGaussian::ExactGeodesicArea),
-            ],
-        )?;
-        settings.volume_weighting = volume_weighting_named(volume_weighting)?;
+        settings.gaussian_method = named(gaussian_method)?;
+        settings.volume_weighting = named(volume_weighting)?;
         settings.rho_min_fraction = rho_min;
         settings.flat_tol = flat_tol;
-        settings.method = curvature_method_named(method)?;
+        settings.method = named(method)?;
         let vertices = vertices.map(|v| v.as_slice().map(<[i64]>::to_vec)).transpose()?;
         let inner = &self.inner;
         let result = guarded(py, || inner.compute(&settings, vertices.as_deref()))?;

@@ -10,7 +10,9 @@ import warnings
 import numpy as np
 
 from .._core import __version__
+from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
+from ..options import ARGUMENT_DEFAULTS
 from ..writers import write_json
 from .common import add_atlas_options, add_feature_options, console
 
@@ -24,7 +26,7 @@ def add_command(commands) -> None:
     parser.add_argument("--frames", nargs="+", metavar="FILE", help="frames: one .npy array (n_frames, V, 3) or "
                         "mesh files with the mesh's vertices and faces, in order")
     parser.add_argument("--animation", help="glTF animation to play, by name or index (default: the first)")
-    parser.add_argument("--fps", type=float, default=24.0, help="frames per second (default 24)")
+    parser.add_argument("--fps", type=float, default=DEFAULT_FPS, help="frames per second (default %(default)s)")
     parser.add_argument("--max-frames", type=int, default=None, help="stop after this many frames")
     parser.add_argument("--feature", default="mean_curvature", help="comma-separated feature names, or 'all'")
     parser.add_argument("--radius", default="2%", help="one radius, in object units or %% of the bounding-box "
@@ -32,7 +34,7 @@ def add_command(commands) -> None:
     add_atlas_options(parser)
     add_feature_options(parser)
     parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
-    parser.add_argument("--seed", type=int, default=0, help="sample-pattern seed, the same for every frame")
+    parser.add_argument("--seed", type=int, default=ARGUMENT_DEFAULTS["seed"], help="sample-pattern seed, the same for every frame")
     parser.set_defaults(handler=run)
 
 

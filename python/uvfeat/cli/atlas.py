@@ -6,6 +6,7 @@ import os
 import time
 
 from .._core import __version__
+from ..options import CHOICES
 from ..writers import write_json
 from .common import MESH_HELP, add_atlas_options, add_uv_options, on_file, steps
 
@@ -16,7 +17,8 @@ def add_command(commands) -> None:
                                  "summary.json (pictures with v up).")
     parser.add_argument("mesh", help=MESH_HELP)
     add_atlas_options(parser)
-    parser.add_argument("--precision", choices=("f32", "f16"), default="f32", help="storage of positions/normals")
+    parser.add_argument("--precision", choices=CHOICES["precision"], default=CHOICES["precision"][0],
+                        help="storage of positions/normals (default %(default)s)")
     add_uv_options(parser)
     parser.set_defaults(handler=on_file(write_atlas))
 

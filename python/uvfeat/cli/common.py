@@ -8,6 +8,8 @@ import contextlib
 import time
 import warnings
 
+from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, FEATURES
+
 MESH_HELP = "mesh file (obj, ply, glb, gltf, off, stl)"
 
 
@@ -79,19 +81,19 @@ def add_uv_options(parser: argparse.ArgumentParser) -> None:
 
 
 def add_feature_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--samples", type=int, default=256, help="Monte Carlo samples per texel (default 256)")
-    parser.add_argument("--compute-resolution", type=int, default=512, help="computation texture size (default 512)")
-    parser.add_argument("--method", choices=("integral", "fit"), default="integral",
+    parser.add_argument("--samples", type=int, default=ARGUMENT_DEFAULTS["samples"],
+                        help="Monte Carlo samples per texel (default %(default)s)")
+    parser.add_argument("--compute-resolution", type=int, default=ARGUMENT_DEFAULTS["compute_resolution"],
+                        help="computation texture size (default %(default)s)")
+    parser.add_argument("--method", choices=CHOICES["method"], default=DEFAULT_OPTIONS["method"],
                         help="curvature estimators: integral invariants or the osculating-circle fit (adds principal "
-                        "directions)")
-    parser.add_argument("--sampling", choices=("fast", "exact"), default="fast",
-                        help="sampler: the fast path (default) or the exact path it is checked against")
+                        "directions; default %(default)s)")
+    parser.add_argument("--sampling", choices=CHOICES["sampling"], default=DEFAULT_OPTIONS["sampling"],
+                        help="sampler: the fast path or the exact path it is checked against (default %(default)s)")
 
 
 def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:
     """Arguments shared by the commands that compute features on a mesh file."""
-    from ..options import FEATURES
-
     parser.add_argument("mesh", help=MESH_HELP)
     parser.add_argument("--feature", default="mean_curvature",
                         help="comma-separated names, or 'all' (" + ", ".join(FEATURES) + ")")
@@ -100,5 +102,6 @@ def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: st
     add_atlas_options(parser)
     add_feature_options(parser)
     add_uv_options(parser)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--query", choices=("texture", "direct"), default="texture", help="per-vertex query")
+    parser.add_argument("--seed", type=int, default=ARGUMENT_DEFAULTS["seed"], help="seed of the sample pattern")
+    parser.add_argument("--query", choices=CHOICES["query"], default=DEFAULT_OPTIONS["query"],
+                        help="per-vertex query (default %(default)s)")
