@@ -25,6 +25,8 @@ demo: install
 	$(BIN)/uvfeat demo --out $(DEMO_OUT)
 
 test-rs:
+	cargo clippy --version >/dev/null 2>&1 || rustup component add clippy
+	cargo clippy --workspace --all-targets -q -- -D warnings
 	cargo test --workspace --exclude uvfeat-python
 
 test-py: install

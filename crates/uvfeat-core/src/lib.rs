@@ -12,6 +12,8 @@
 //! at index `j * R + i`, centred at `((i + 0.5)/R, (j + 0.5)/R)`; normals outward by the
 //! right-hand rule on counter-clockwise corners.
 #![warn(missing_docs)]
+// Validations write `!(x >= 0.0)` on purpose: unlike `x < 0.0`, it rejects NaN too.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod atlas;
 pub mod distortion;

@@ -103,8 +103,8 @@ fn solve_in(frame: &Frame, samples: &[Sample], radius: f64) -> Option<[f64; UNKN
         let q = Local::new((s.position - frame.origin) / radius, frame);
         for i in 0..UNKNOWNS {
             atb[i] += s.area * q.basis[i] * q.z;
-            for j in 0..=i {
-                ata[i][j] += s.area * q.basis[i] * q.basis[j];
+            for (j, &basis) in q.basis[..=i].iter().enumerate() {
+                ata[i][j] += s.area * q.basis[i] * basis;
             }
         }
     }

@@ -61,10 +61,10 @@ fn weld_with_tolerance(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize)
     }
     let mut ids = vec![0u32; positions.len()];
     let mut numbering: HashMap<u32, u32> = HashMap::new();
-    for v in 0..positions.len() {
+    for (v, id) in ids.iter_mut().enumerate() {
         let root = find(&mut parent, v as u32);
         let next = numbering.len() as u32;
-        ids[v] = *numbering.entry(root).or_insert(next);
+        *id = *numbering.entry(root).or_insert(next);
     }
     (ids, numbering.len())
 }

@@ -107,8 +107,6 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
     (0..maps.features.len()).map(|f| ids.iter().map(|&g| geometric[g as usize][f] as f32).collect()).collect()
 }
 
-/// The pattern rotation of a vertex evaluated directly.
-
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
 /// at one corner UV of the vertex (a line field has no sign, so texels cannot be averaged
 /// bilinearly like scalar maps); NaN where the fit failed.

@@ -30,6 +30,9 @@ pub struct NeighbourhoodTile {
     pub valid: Vec<bool>,
 }
 
+/// One texel's index, centre, centre normal and samples.
+type TexelSamples = (u32, [f64; 3], [f64; 3], Vec<Sample>);
+
 /// Gathers the neighbourhoods of the texels with index in `texels` (of the `W_c`² texture).
 pub fn neighbourhood_tile(
     atlas: &Atlas,
@@ -40,7 +43,7 @@ pub fn neighbourhood_tile(
     let n = settings.samples;
     let pattern = disk_pattern(n, settings.seed, 0);
     let sampler = SamplerSettings { with_normals: true, ..settings.sampler() };
-    let per_texel: Vec<(u32, [f64; 3], [f64; 3], Vec<Sample>)> = texels
+    let per_texel: Vec<TexelSamples> = texels
         .into_par_iter()
         .filter_map(|t| {
             let (i, j) = (t % w, t / w);
