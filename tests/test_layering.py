@@ -72,3 +72,36 @@ def test_the_package_has_no_import_loops():
     assert {"uvfeat.atlas", "uvfeat.features", "uvfeat.cli", "uvfeat.cli.animate"} <= set(graph)
     assert "uvfeat.features" in graph["uvfeat.atlas"]
     assert cycles(graph) == []
+
+
+CORE = REPO / "crates" / "uvfeat-core" / "src"
+
+
+def core_graphs() -> tuple[dict[str, set[str]], dict[str, set[str]]]:
+    """The Rust core's module graphs: between its stages (top-level modules, from `crate::` paths)
+    and between the files of each stage's folder (from `super::` paths). Comments and the unit
+    tests at the end of a file are left out."""
+    import re
+
+    stages, files = {}, {}
+    for path in CORE.rglob("*.rs"):
+        relative = path.relative_to(CORE)
+        code = re.sub(r"#\[cfg\(test\)\]\s*mod tests.*", "", path.read_text(), flags=re.S)
+        code = re.sub(r"//.*", "", code)
+        if relative.name != "lib.rs":
+            stage = relative.parts[0].removesuffix(".rs")
+            stages.setdefault(stage, set()).update(m for m in re.findall(r"crate::([a-z_]+)", code)
+                                                   if m != stage and ((CORE / m).exists() or (CORE / f"{m}.rs").exists()))
+        if len(relative.parts) == 2 and relative.name != "mod.rs":
+            folder = relative.parts[0]
+            files[f"{folder}/{relative.stem}"] = {f"{folder}/{m}" for m in re.findall(r"super::([a-z_]+)", code)
+                                                  if (CORE / folder / f"{m}.rs").exists()}
+    return stages, files
+
+
+def test_the_core_has_no_module_loops():
+    stages, files = core_graphs()
+    assert {"sampling", "features", "settings"} <= stages["evaluation"]
+    assert "sampling/domain" in files["sampling/gather"]
+    assert cycles(stages) == []
+    assert cycles(files) == []

@@ -10,8 +10,9 @@ use std::sync::Arc;
 use std::time::Instant;
 use uvfeat_core::features::Feature;
 use uvfeat_core::mesh::{Topology, TriangleMesh};
-use uvfeat_core::output::{ComputeSettings, FeatureMaps};
+use uvfeat_core::output::FeatureMaps;
 use uvfeat_core::sampling::{disk_pattern, pixel_angle, SamplingPath};
+use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::{Atlas, AtlasOptions};
 
 /// CPU seconds of this process (user + system) from /proc, or NaN where it is not available.

@@ -18,6 +18,7 @@
 pub mod atlas;
 pub mod distortion;
 pub mod error;
+pub mod evaluation;
 pub mod features;
 pub mod frame;
 pub mod lookup;
@@ -27,6 +28,7 @@ pub mod raster;
 pub mod reference;
 pub mod relocation;
 pub mod sampling;
+pub mod settings;
 pub mod shapes;
 
 pub use atlas::{Atlas, AtlasOptions};

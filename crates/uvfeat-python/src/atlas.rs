@@ -2,16 +2,16 @@
 
 use crate::arrays::{flatten, rows, to_numpy};
 use crate::error::guarded;
-use crate::options::named;
-use crate::topology::PyTopology;
+use crate::mesh::PyTopology;
+use crate::settings::named;
 use glam::{DMat2, DVec2, DVec3};
 use half::f16;
 use numpy::{PyArrayDyn, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use uvfeat_core::lookup::surface_point;
-use uvfeat_core::output::Choice;
 use uvfeat_core::relocation::{cross_seam, locate, Located};
+use uvfeat_core::settings::Choice;
 use uvfeat_core::{Atlas, AtlasOptions, Precision};
 
 #[pyclass(name = "Atlas", module = "uvfeat._core")]

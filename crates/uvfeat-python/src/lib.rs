@@ -4,30 +4,30 @@
 mod arrays;
 mod atlas;
 mod error;
-mod features;
-mod options;
+mod mesh;
+mod output;
 mod reference;
+mod settings;
 mod shapes;
-mod topology;
 
 use pyo3::prelude::*;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add_class::<topology::PyTopology>()?;
+    m.add_class::<mesh::PyTopology>()?;
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::buffer_bytes, m)?)?;
-    m.add_function(wrap_pyfunction!(options::feature_names, m)?)?;
-    m.add_function(wrap_pyfunction!(options::default_options, m)?)?;
-    m.add_function(wrap_pyfunction!(options::paper_options, m)?)?;
-    m.add_function(wrap_pyfunction!(options::option_choices_by_name, m)?)?;
-    m.add_class::<features::PySettings>()?;
-    m.add_class::<features::PyFeatureMaps>()?;
-    m.add_function(wrap_pyfunction!(features::compute_settings, m)?)?;
-    m.add_function(wrap_pyfunction!(features::compute_maps, m)?)?;
-    m.add_function(wrap_pyfunction!(features::neighbourhood_tile_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::feature_names, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::default_options, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::paper_options, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::option_choices_by_name, m)?)?;
+    m.add_class::<settings::PySettings>()?;
+    m.add_class::<output::PyFeatureMaps>()?;
+    m.add_function(wrap_pyfunction!(settings::compute_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(output::compute_maps, m)?)?;
+    m.add_function(wrap_pyfunction!(output::neighbourhood_tile_arrays, m)?)?;
     m.add_class::<reference::PyReferenceMesh>()?;
     Ok(())
 }

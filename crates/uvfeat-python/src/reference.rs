@@ -2,7 +2,7 @@
 
 use crate::arrays::{rows, to_numpy};
 use crate::error::guarded;
-use crate::options::{feature_list, named};
+use crate::settings::{feature_list, named};
 use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use uvfeat_core::reference::{ReferenceMesh, ReferenceSettings};

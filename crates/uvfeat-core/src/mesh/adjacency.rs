@@ -2,7 +2,7 @@
 //! triangle walk of the relocation follows them (inside a chart to the neighbouring face, at a
 //! chart boundary to the side whose transition map carries the walk on).
 
-use super::topology::BoundarySide;
+use super::sides::BoundarySide;
 use glam::DVec2;
 use rayon::prelude::*;
 

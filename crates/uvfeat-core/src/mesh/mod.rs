@@ -8,6 +8,7 @@ mod corners;
 mod edges;
 mod jacobian;
 mod normals;
+mod sides;
 mod topology;
 mod transition;
 mod weld;
@@ -17,7 +18,8 @@ pub use corners::NO_CORNER;
 pub use edges::{EdgeCounts, SideKind};
 pub use jacobian::Jacobian;
 pub use normals::vertex_normals;
-pub use topology::{BoundarySide, Topology, TopologyDiagnostics};
+pub use sides::BoundarySide;
+pub use topology::{Topology, TopologyDiagnostics};
 pub use transition::{seam_maps, SeamMap};
 pub use weld::weld_positions;
 

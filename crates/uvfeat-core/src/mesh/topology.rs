@@ -4,29 +4,12 @@
 use super::adjacency::{face_links, walk_faces, WalkFace};
 use super::charts::chart_ids;
 use super::corners::corner_groups;
-use super::edges::{classify_edges, EdgeCounts, FaceSide, SideKind};
+use super::edges::{classify_edges, EdgeCounts};
+use super::sides::{boundary_sides, BoundarySide};
 use super::weld::weld_positions;
 use super::{uv_is_degenerate, uv_signed_area2, TriangleMesh};
 use crate::error::{Result, UvfeatError};
 use glam::{DVec2, DVec3};
-use std::collections::HashMap;
-
-/// One face's side of a chart-boundary edge (a seam side, a mesh border or a non-manifold edge).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoundarySide {
-    /// The face whose edge this is.
-    pub face: u32,
-    /// The edge runs from corner `local` to corner `local + 1` of `face`.
-    pub local: u8,
-    /// Chart of `face`.
-    pub chart: i32,
-    /// What lies across.
-    pub kind: SideKind,
-    /// Index (into [`Topology::sides`]) of the same seam seen from the other face; `-1` otherwise.
-    pub reverse: i32,
-    /// Chart across the seam (may equal `chart` for a self-adjacent seam); `-1` where the surface ends.
-    pub adjacent_chart: i32,
-}
 
 /// Counts that describe the pre-processing.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -155,28 +138,4 @@ impl Topology {
         let uv = self.corner_uvs[f];
         ([tri[k], tri[(k + 1) % 3]], [uv[k], uv[(k + 1) % 3]])
     }
-}
-
-fn boundary_sides(boundary: &[(FaceSide, SideKind)], face_chart: &[i32]) -> Vec<BoundarySide> {
-    let index: HashMap<(u32, u8), usize> =
-        boundary.iter().enumerate().map(|(i, (s, _))| ((s.face, s.local), i)).collect();
-    boundary
-        .iter()
-        .map(|&(side, kind)| {
-            let (reverse, adjacent_chart) = match kind {
-                SideKind::Seam { other_face, other_local } => {
-                    (index[&(other_face, other_local)] as i32, face_chart[other_face as usize])
-                }
-                _ => (-1, -1),
-            };
-            BoundarySide {
-                face: side.face,
-                local: side.local,
-                chart: face_chart[side.face as usize],
-                kind,
-                reverse,
-                adjacent_chart,
-            }
-        })
-        .collect()
 }

@@ -1,13 +1,13 @@
 //! Feature maps over the computation texture (DESIGN.md §1.9): every texel centre of a `W_c x W_c`
 //! grid is a point `s` where all requested features are evaluated, in parallel over rows.
 
-use super::pixel::{evaluate_point, Patterns, PixelResult};
-use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::error::Result;
+use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{CurvatureMethod, Feature};
 use crate::lookup::Lookup;
 use crate::sampling::Placement;
+use crate::settings::ComputeSettings;
 use glam::DVec2;
 use rayon::prelude::*;
 

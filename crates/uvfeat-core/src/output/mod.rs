@@ -1,14 +1,10 @@
-//! Stage 6 of the pipeline (DESIGN.md §1.9): feature maps over the computation texture and
-//! per-vertex values.
+//! Stage 6 of the pipeline (DESIGN.md §1.9): feature maps over the computation texture,
+//! per-vertex values, and the neighbourhood samples of texel tiles for user-defined operators.
 
 mod feature_map;
-mod options;
+mod neighbourhood_tiles;
 mod per_vertex;
-mod pixel;
-mod settings;
 
 pub use feature_map::{FeatureMaps, MapSummary};
-pub use options::{named_options, option_choices, Choice, GivenValue, OptionValue};
-pub use per_vertex::{per_vertex, per_vertex_directions, VertexQuery};
-pub use pixel::{evaluate_point, Patterns, PixelResult};
-pub use settings::ComputeSettings;
+pub use neighbourhood_tiles::{neighbourhood_tile, NeighbourhoodTile};
+pub use per_vertex::{per_vertex, per_vertex_directions};

@@ -2,23 +2,13 @@
 //! UV of a vertex, averaged over its corners; direct evaluation where no texel is usable.
 
 use super::feature_map::FeatureMaps;
-use super::pixel::{evaluate_point, Patterns};
-use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
+use crate::evaluation::{evaluate_point, Patterns};
 use crate::features::CurvatureMethod;
 use crate::sampling::Placement;
+use crate::settings::{ComputeSettings, VertexQuery};
 use glam::DVec2;
 use rayon::prelude::*;
-
-/// How per-vertex values are obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum VertexQuery {
-    /// Bilinear lookup in the feature maps (the paper's; falls back to `Direct` per vertex).
-    #[default]
-    Texture,
-    /// Evaluate the estimators at each corner UV.
-    Direct,
-}
 
 /// Distinct `(uv, chart)` corners of every geometric vertex.
 fn corners(atlas: &Atlas) -> Vec<Vec<(DVec2, i32)>> {

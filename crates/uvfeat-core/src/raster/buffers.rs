@@ -25,6 +25,14 @@ impl Precision {
             Precision::F16 => f16::from_f32(x).to_f32(),
         }
     }
+
+    /// `v` rounded to the precision of the buffers (centres and samples read at that precision).
+    pub fn round_point(self, v: DVec3) -> DVec3 {
+        match self {
+            Precision::F32 => v,
+            Precision::F16 => DVec3::from_array(v.to_array().map(|x| f64::from(f16::from_f64(x)))),
+        }
+    }
 }
 
 /// Surface attributes per texel; empty texels hold NaN. Indexing as in [`Coverage`].

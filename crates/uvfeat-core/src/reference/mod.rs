@@ -38,7 +38,7 @@ pub use voronoi::{mixed_voronoi_areas, mixed_voronoi_corners};
 use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeighting};
 use crate::mesh::{checked_indices, checked_positions};
-use crate::output::ComputeSettings;
+use crate::settings::ComputeSettings;
 use glam::DVec3;
 use rayon::prelude::*;
 use vertex_estimate::{vertex_estimate, Context, Scratch};
@@ -55,6 +55,16 @@ pub enum ReferenceGaussian {
     /// Exact polyhedral geodesic distances and triangle areas clipped at distance `r`.
     ExactGeodesicArea,
 }
+
+crate::choice!(
+    ReferenceGaussian,
+    "gaussian_method",
+    [
+        ("moments", ReferenceGaussian::Moments),
+        ("geodesic_area", ReferenceGaussian::GeodesicArea),
+        ("exact_geodesic_area", ReferenceGaussian::ExactGeodesicArea),
+    ]
+);
 
 /// A reference computation request.
 #[derive(Debug, Clone, PartialEq)]

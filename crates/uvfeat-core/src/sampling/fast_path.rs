@@ -15,25 +15,17 @@
 //! [`Coverage::interior_face`]: crate::raster::Coverage::interior_face
 //! [`FacePatch`]: crate::raster::FacePatch
 
-use super::gather::{locate_target, located_sample, Domain};
+use super::centre::Centre;
+use super::domain::Domain;
 use super::geodesic::{arc_distance, Geodesic};
-use super::neighbourhood::{unit_ellipse_area, Centre, Sample, SampleCounts, SamplerSettings};
+use super::located::{locate_target, located_sample};
+use super::sample::{unit_ellipse_area, Sample, SampleCounts};
+use super::settings::{SamplerSettings, SamplingPath};
 use crate::atlas::Atlas;
 use crate::lookup::Lookup;
 use crate::raster::{FacePatch, Precision};
 use crate::relocation::{Located, Relocation};
 use glam::{DVec2, DVec3, Vec2, Vec3};
-
-/// Which sampler runs: the fast path where it keeps the exact path's answers, or the exact path
-/// everywhere (the reference of the fast one).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum SamplingPath {
-    /// Interior samples straight from the face-id buffer and the f32 patches (default).
-    #[default]
-    Fast,
-    /// Every sample located and evaluated on its own, in f64.
-    Exact,
-}
 
 /// `true` when the fast path serves `settings` on `atlas`: the choices whose interior samples it
 /// reproduces (triangle lookup, walk or march relocation, arc geodesics, f32 buffers).

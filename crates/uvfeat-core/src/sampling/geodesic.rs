@@ -1,7 +1,7 @@
 //! Geodesic distance estimates from the centre `p` to a sample `q` (DESIGN.md §2.5a), used by the
 //! geodesic-disk area of K and the geodesic neighbourhood criterion.
 
-use super::neighbourhood::Centre;
+use super::centre::Centre;
 use crate::atlas::Atlas;
 use crate::lookup::Lookup;
 use glam::DVec2;

@@ -1,23 +1,29 @@
 //! Stage 4 of the pipeline (DESIGN.md §1.4–§1.8): Monte Carlo sampling of the neighbourhood of every
-//! point in parametric space.
+//! point in parametric space. From the bottom up: the sampler's settings, the centre, the pattern
+//! and its per-direction reach, the sampling domain, the samples and their acceptance, located
+//! points turned into samples, then the gatherings (exact loop, fast path, per-chart repetition)
+//! and the domain growth that repeats a gathering where the ball reached past the domain.
 
-mod coverage;
+mod centre;
+mod domain;
+mod domain_growth;
 mod fast_path;
 mod gather;
 mod geodesic;
-mod neighbourhood;
+mod located;
 mod pattern;
 mod per_chart;
 mod reach;
-mod tile;
+mod sample;
+mod settings;
 
-pub use coverage::{gather_covering, MAX_MARGIN};
-pub use fast_path::SamplingPath;
+pub use centre::{centre_at, Centre};
+pub use domain_growth::{gather_covering, MAX_MARGIN};
 pub use gather::gather;
 pub use geodesic::{arc_distance, Geodesic, CHORD_SEGMENTS};
-pub use neighbourhood::{centre_at, Centre, Criterion, Sample, SampleCounts, SamplerSettings};
 pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,
 };
 pub use reach::Reach;
-pub use tile::{neighbourhood_tile, NeighbourhoodTile};
+pub use sample::{Sample, SampleCounts};
+pub use settings::{Criterion, SamplerSettings, SamplingPath};

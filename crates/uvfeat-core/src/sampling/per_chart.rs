@@ -9,10 +9,12 @@
 //! texel closest to the centre), so near a corner where two seams to the same chart meet, the
 //! samples beyond the farther one are lost.
 
-use super::gather::offsets;
-use super::neighbourhood::{accept, unit_ellipse_area, Candidate, Centre, Sample, SampleCounts, SamplerSettings};
+use super::centre::Centre;
+use super::domain::offsets;
 use super::pattern::Placement;
 use super::reach::Reach;
+use super::sample::{accept, unit_ellipse_area, Candidate, Sample, SampleCounts};
+use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
 use crate::relocation::{border_texel, last_inside};
 use glam::DVec2;

@@ -6,8 +6,9 @@
 use crate::support::{atlas, median};
 use glam::DVec2;
 use uvfeat_core::features::Feature;
-use uvfeat_core::output::{ComputeSettings, FeatureMaps};
+use uvfeat_core::output::FeatureMaps;
 use uvfeat_core::sampling::SamplingPath;
+use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::shapes::{torus, uv_sphere, ShapeMesh};
 use uvfeat_core::Atlas;
 

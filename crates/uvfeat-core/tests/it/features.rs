@@ -3,7 +3,8 @@
 
 use crate::support::{atlas, median};
 use uvfeat_core::features::Feature;
-use uvfeat_core::output::{ComputeSettings, FeatureMaps};
+use uvfeat_core::output::FeatureMaps;
+use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::shapes::{cylinder, plane, torus, uv_sphere, ShapeMesh};
 use uvfeat_core::Atlas;
 

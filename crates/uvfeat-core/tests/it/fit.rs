@@ -6,8 +6,9 @@ use crate::support::{atlas, median};
 use glam::{DMat3, DQuat, DVec2, DVec3};
 use uvfeat_core::features::{CurvatureMethod, Feature};
 use uvfeat_core::lookup::Lookup;
-use uvfeat_core::output::{per_vertex_directions, ComputeSettings, FeatureMaps};
+use uvfeat_core::output::{per_vertex_directions, FeatureMaps};
 use uvfeat_core::sampling::centre_at;
+use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::shapes::{cylinder, ellipsoid, torus, uv_sphere, ShapeMesh};
 use uvfeat_core::Atlas;
 

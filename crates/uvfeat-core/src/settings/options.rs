@@ -7,7 +7,6 @@ use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, GaussianMethod, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::raster::Precision;
-use crate::reference::ReferenceGaussian;
 use crate::relocation::Relocation;
 use crate::sampling::{Criterion, Geodesic, SamplingPath};
 
@@ -40,46 +39,39 @@ pub trait Choice: Copy + PartialEq + Sized + 'static {
     }
 }
 
+/// Implements [`Choice`] for an enum: `choice!(Type, "option", [("name", Type::Value), ...])`.
+#[macro_export]
 macro_rules! choice {
     ($kind:ty, $option:literal, [$(($name:literal, $value:expr)),+ $(,)?]) => {
-        impl Choice for $kind {
+        impl $crate::settings::Choice for $kind {
             const OPTION: &'static str = $option;
             const CHOICES: &'static [(&'static str, Self)] = &[$(($name, $value)),+];
         }
     };
 }
 
-choice!(
+crate::choice!(
     Relocation,
     "relocation",
     [("walk", Relocation::Walk), ("march", Relocation::March), ("per_chart", Relocation::PerChart)]
 );
-choice!(Criterion, "criterion", [("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)]);
-choice!(Lookup, "lookup", [("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)]);
-choice!(Geodesic, "geodesic", [("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)]);
-choice!(SamplingPath, "sampling", [("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)]);
-choice!(
+crate::choice!(Criterion, "criterion", [("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)]);
+crate::choice!(Lookup, "lookup", [("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)]);
+crate::choice!(Geodesic, "geodesic", [("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)]);
+crate::choice!(SamplingPath, "sampling", [("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)]);
+crate::choice!(
     GaussianMethod,
     "gaussian_method",
     [("moments", GaussianMethod::Moments), ("geodesic_area", GaussianMethod::GeodesicArea)]
 );
-choice!(CurvatureMethod, "method", [("integral", CurvatureMethod::Integral), ("fit", CurvatureMethod::Fit)]);
-choice!(
+crate::choice!(CurvatureMethod, "method", [("integral", CurvatureMethod::Integral), ("fit", CurvatureMethod::Fit)]);
+crate::choice!(
     VolumeWeighting,
     "volume_weighting",
     [("distance", VolumeWeighting::Distance), ("uniform", VolumeWeighting::Uniform)]
 );
-choice!(VertexQuery, "query", [("texture", VertexQuery::Texture), ("direct", VertexQuery::Direct)]);
-choice!(Precision, "precision", [("f32", Precision::F32), ("f16", Precision::F16)]);
-choice!(
-    ReferenceGaussian,
-    "gaussian_method",
-    [
-        ("moments", ReferenceGaussian::Moments),
-        ("geodesic_area", ReferenceGaussian::GeodesicArea),
-        ("exact_geodesic_area", ReferenceGaussian::ExactGeodesicArea),
-    ]
-);
+crate::choice!(VertexQuery, "query", [("texture", VertexQuery::Texture), ("direct", VertexQuery::Direct)]);
+crate::choice!(Precision, "precision", [("f32", Precision::F32), ("f16", Precision::F16)]);
 
 /// The value of an option as the user writes it.
 #[derive(Debug, Clone, PartialEq)]
@@ -271,7 +263,7 @@ mod tests {
         assert!(default_first::<Relocation>() && default_first::<Criterion>() && default_first::<Lookup>());
         assert!(default_first::<Geodesic>() && default_first::<SamplingPath>() && default_first::<GaussianMethod>());
         assert!(default_first::<CurvatureMethod>() && default_first::<VolumeWeighting>());
-        assert!(default_first::<VertexQuery>() && default_first::<Precision>() && default_first::<ReferenceGaussian>());
+        assert!(default_first::<VertexQuery>() && default_first::<Precision>());
         assert_eq!(SamplingPath::named("exact").unwrap(), SamplingPath::Exact);
         assert_eq!(VertexQuery::default().name(), "texture");
     }

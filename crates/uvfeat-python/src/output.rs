@@ -1,36 +1,15 @@
-//! Feature computation: settings in, `FeatureMaps` out (per-texel maps, diagnostics, per-vertex
-//! values), and neighbourhood tiles for user-defined operators.
+//! Feature maps of a computation (per-texel maps, diagnostics, per-vertex values) and neighbourhood
+//! tiles for user-defined operators.
 
 use crate::arrays::{flatten, to_numpy};
 use crate::atlas::PyAtlas;
-use crate::error::{guarded, to_py};
-use crate::options::{feature_list, given, named};
+use crate::error::guarded;
+use crate::settings::{named, PySettings};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use uvfeat_core::output::{per_vertex, per_vertex_directions, ComputeSettings, FeatureMaps, VertexQuery};
-use uvfeat_core::sampling::neighbourhood_tile;
-
-/// Builds and validates core settings: `options` maps option names (those of
-/// `default_options()`: the sample count, resolution, seed and adaptive flag included) to bool,
-/// number or name values; options left out keep their defaults.
-#[pyfunction]
-#[pyo3(signature = (features, radius, options))]
-pub fn compute_settings(features: Vec<String>, radius: f64, options: &Bound<'_, PyDict>) -> PyResult<PySettings> {
-    let mut s = ComputeSettings::new(feature_list(&features)?, radius);
-    for (key, value) in options.iter() {
-        let name: String = key.extract()?;
-        s.set_option(&name, &given(&name, &value)?).map_err(to_py)?;
-    }
-    s.validate().map_err(to_py)?;
-    Ok(PySettings { inner: s })
-}
-
-/// Validated settings of a feature computation.
-#[pyclass(name = "ComputeSettings", module = "uvfeat._core", frozen)]
-pub struct PySettings {
-    pub inner: ComputeSettings,
-}
+use uvfeat_core::output::{neighbourhood_tile, per_vertex, per_vertex_directions, FeatureMaps};
+use uvfeat_core::settings::{ComputeSettings, VertexQuery};
 
 /// Maps of one computation (one radius).
 #[pyclass(name = "FeatureMaps", module = "uvfeat._core", frozen)]

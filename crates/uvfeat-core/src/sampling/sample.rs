@@ -1,71 +1,13 @@
-//! The weighted neighbourhood of one parametric point (DESIGN.md §1.4, §1.7): its centre, its samples
-//! and their acceptance. A surface point reached from the centre is kept when it lies in the ball
-//! of radius `r`, weighted by the surface area it represents (the gathering itself is in
-//! `gather.rs` and `per_chart.rs`).
+//! The samples of one neighbourhood (DESIGN.md §1.4, §1.7) and their acceptance: a surface point
+//! reached from the centre is kept when it lies in the ball of radius `r`, weighted by the surface
+//! area it represents (the gathering itself is in `gather.rs`, `fast_path.rs` and `per_chart.rs`).
 
-use super::fast_path::SamplingPath;
+use super::centre::Centre;
 use super::geodesic::{arc_distance, chord_sum_distance, Geodesic};
+use super::settings::{Criterion, SamplerSettings};
 use crate::atlas::Atlas;
-use crate::distortion::Distortion;
-use crate::lookup::{Lookup, SurfacePoint};
-use crate::raster::Precision;
-use crate::relocation::{home, Home, Relocation};
+use crate::lookup::SurfacePoint;
 use glam::{DMat2, DVec2, DVec3};
-use half::f16;
-
-/// Which samples belong to the neighbourhood `S(p, r)`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Criterion {
-    /// `|q - p| < r` (default; the paper's).
-    #[default]
-    Euclidean,
-    /// Geodesic estimate `d(p, q) < r` (DESIGN.md §2.5; see [`Geodesic`]).
-    Geodesic,
-}
-
-/// Settings of the sampler.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SamplerSettings {
-    /// Neighbourhood radius `r` (object units).
-    pub radius: f64,
-    /// Ellipse coverage margin `m` (DESIGN.md §3.2; 1.25 default, 1 = paper).
-    pub margin: f64,
-    /// Seams a sample may cross (DESIGN.md §1.5; 32 default, 1 = paper).
-    pub max_jumps: u32,
-    /// How samples that leave the chart are relocated.
-    pub relocation: Relocation,
-    /// Neighbourhood criterion.
-    pub criterion: Criterion,
-    /// Surface lookup of the centre and the samples.
-    pub lookup: Lookup,
-    /// Geodesic distance estimate the samples carry.
-    pub geodesic: Geodesic,
-    /// Fast path for interior samples, or the exact path everywhere.
-    pub path: SamplingPath,
-    /// The samples' normals are used (bending energy, user operators); the fast path leaves them
-    /// NaN otherwise (the exact path has them from its lookup anyway).
-    pub with_normals: bool,
-    /// The samples' geodesic distances are used (geodesic criterion or geodesic-area K); they are
-    /// NaN otherwise (the estimate costs an `asin`, or a chord sum, per sample).
-    pub with_geodesic: bool,
-}
-
-/// The centre `p = P(s)` of a neighbourhood.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Centre {
-    /// Parametric location `s`.
-    pub uv: DVec2,
-    /// Chart of `s`.
-    pub chart: i32,
-    /// `p`.
-    pub position: DVec3,
-    /// Unit normal at `p`.
-    pub normal: DVec3,
-    /// The sampler's metric at `s` (see [`crate::frame::Frame::sampling_distortion`]).
-    pub distortion: Distortion,
-    /// The face containing `s`, where walks to the samples start.
-    pub home: Home,
-}
 
 /// One accepted sample `q_i` of a neighbourhood.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -104,32 +46,6 @@ impl SampleCounts {
         self.missing += other.missing;
         self.border += other.border;
     }
-}
-
-fn rounded(v: DVec3, precision: Precision) -> DVec3 {
-    match precision {
-        Precision::F32 => v,
-        Precision::F16 => DVec3::from_array(v.to_array().map(|x| f64::from(f16::from_f64(x)))),
-    }
-}
-
-/// The centre at parametric location `uv`; `None` off the charts or on a face degenerate in 3D.
-pub fn centre_at(atlas: &Atlas, uv: DVec2, lookup: Lookup) -> Option<Centre> {
-    let chart = atlas.chart_at(uv);
-    let home = home(atlas, uv, chart)?;
-    let point = lookup.evaluate(atlas, Some(home.face), home.point, chart)?;
-    let distortion = atlas.frame.sampling_distortion(&atlas.topology, home.face, home.point);
-    if !(distortion.sigma2 > 1e-12 * distortion.sigma1) {
-        return None;
-    }
-    Some(Centre {
-        uv,
-        chart,
-        position: rounded(point.position, atlas.precision),
-        normal: rounded(point.normal, atlas.precision),
-        distortion,
-        home,
-    })
 }
 
 /// The centre's metric ellipse for unit margin: maps a disk point `w` to the parametric offset
@@ -178,7 +94,7 @@ pub fn accept(
     out: &mut Vec<Sample>,
 ) -> bool {
     let r = settings.radius;
-    let q = rounded(candidate.point.position, atlas.precision);
+    let q = atlas.precision.round_point(candidate.point.position);
     let offset = q - centre.position;
     let distance = offset.length();
     if distance <= 1e-6 * r || distance >= r {
@@ -199,7 +115,7 @@ pub fn accept(
     }
     out.push(Sample {
         position: q,
-        normal: rounded(candidate.point.normal, atlas.precision),
+        normal: atlas.precision.round_point(candidate.point.normal),
         area: candidate.point.area_element * candidate.uv_area,
         distance,
         sin_alpha,

@@ -5,10 +5,13 @@
 //! [`Reach`]): probes along each direction find how far the ball reaches, and the neighbourhood is
 //! gathered once more instead of being estimated over a truncated region.
 
-use super::gather::{distance_inside, gather};
-use super::neighbourhood::{unit_ellipse, Centre, Sample, SampleCounts, SamplerSettings};
+use super::centre::Centre;
+use super::gather::gather;
+use super::located::distance_inside;
 use super::pattern::Placement;
 use super::reach::{Reach, DIRECTIONS};
+use super::sample::{unit_ellipse, Sample, SampleCounts};
+use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
 use glam::DVec2;
 

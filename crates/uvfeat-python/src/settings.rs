@@ -1,11 +1,11 @@
-//! The options' public names, choices and defaults, read from the core (`uvfeat_core::output`),
-//! and Python values converted to option values.
+//! Settings of a feature computation: the options' public names, choices and defaults, read from
+//! the core (`uvfeat_core::settings`), and Python values converted to validated settings.
 
 use crate::error::to_py;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyString};
 use uvfeat_core::features::Feature;
-use uvfeat_core::output::{named_options, option_choices, Choice, ComputeSettings, GivenValue, OptionValue};
+use uvfeat_core::settings::{named_options, option_choices, Choice, ComputeSettings, GivenValue, OptionValue};
 use uvfeat_core::UvfeatError;
 
 /// The value of `T` named `value`, or the core's error naming the valid ones.
@@ -82,4 +82,25 @@ pub(crate) fn given(name: &str, value: &Bound<'_, PyAny>) -> PyResult<GivenValue
 #[pyfunction]
 pub fn feature_names() -> Vec<&'static str> {
     Feature::ALL.map(Feature::name).to_vec()
+}
+
+/// Builds and validates core settings: `options` maps option names (those of
+/// `default_options()`: the sample count, resolution, seed and adaptive flag included) to bool,
+/// number or name values; options left out keep their defaults.
+#[pyfunction]
+#[pyo3(signature = (features, radius, options))]
+pub fn compute_settings(features: Vec<String>, radius: f64, options: &Bound<'_, PyDict>) -> PyResult<PySettings> {
+    let mut s = ComputeSettings::new(feature_list(&features)?, radius);
+    for (key, value) in options.iter() {
+        let name: String = key.extract()?;
+        s.set_option(&name, &given(&name, &value)?).map_err(to_py)?;
+    }
+    s.validate().map_err(to_py)?;
+    Ok(PySettings { inner: s })
+}
+
+/// Validated settings of a feature computation.
+#[pyclass(name = "ComputeSettings", module = "uvfeat._core", frozen)]
+pub struct PySettings {
+    pub inner: ComputeSettings,
 }

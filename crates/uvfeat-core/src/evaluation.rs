@@ -1,7 +1,6 @@
-//! Features at one parametric point: sampling (full or two-stage adaptive, DESIGN.md §1.8), one pass of
+//! Stage 5 of the pipeline: the features at one parametric point: sampling (full or two-stage adaptive, DESIGN.md §1.8), one pass of
 //! statistics, every estimator, and optional batch-means standard errors.
 
-use super::settings::ComputeSettings;
 use crate::atlas::Atlas;
 use crate::features::{
     estimate, quadric_fit, relative_standard_error, CurvatureMethod, NeighbourhoodStats, QuadricFit,
@@ -9,6 +8,7 @@ use crate::features::{
 use crate::sampling::{
     centre_at, disk_pattern, gather, gather_covering, Centre, Placement, Sample, SampleCounts, TURNS,
 };
+use crate::settings::ComputeSettings;
 use glam::DVec2;
 
 /// Interleaved batches behind the standard errors.

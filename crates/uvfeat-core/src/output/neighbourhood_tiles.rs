@@ -1,11 +1,9 @@
 //! The weighted neighbourhood samples of many texels at once, as flat arrays, for user-defined
 //! operators `F(p, S(p))` (DESIGN.md §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
-use super::coverage::gather_covering;
-use super::neighbourhood::{centre_at, Sample, SamplerSettings};
-use super::pattern::{disk_pattern, Placement};
 use crate::atlas::Atlas;
-use crate::output::ComputeSettings;
+use crate::sampling::{centre_at, disk_pattern, gather_covering, Placement, Sample, SamplerSettings};
+use crate::settings::ComputeSettings;
 use glam::DVec2;
 use rayon::prelude::*;
 

@@ -1,0 +1,54 @@
+//! Settings of the sampler: the neighbourhood criterion, the relocation and lookup choices and
+//! which path runs.
+
+use super::geodesic::Geodesic;
+use crate::lookup::Lookup;
+use crate::relocation::Relocation;
+
+/// Which samples belong to the neighbourhood `S(p, r)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Criterion {
+    /// `|q - p| < r` (default; the paper's).
+    #[default]
+    Euclidean,
+    /// Geodesic estimate `d(p, q) < r` (DESIGN.md §2.5; see [`Geodesic`]).
+    Geodesic,
+}
+
+/// Settings of the sampler.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SamplerSettings {
+    /// Neighbourhood radius `r` (object units).
+    pub radius: f64,
+    /// Ellipse coverage margin `m` (DESIGN.md §3.2; 1.25 default, 1 = paper).
+    pub margin: f64,
+    /// Seams a sample may cross (DESIGN.md §1.5; 32 default, 1 = paper).
+    pub max_jumps: u32,
+    /// How samples that leave the chart are relocated.
+    pub relocation: Relocation,
+    /// Neighbourhood criterion.
+    pub criterion: Criterion,
+    /// Surface lookup of the centre and the samples.
+    pub lookup: Lookup,
+    /// Geodesic distance estimate the samples carry.
+    pub geodesic: Geodesic,
+    /// Fast path for interior samples, or the exact path everywhere.
+    pub path: SamplingPath,
+    /// The samples' normals are used (bending energy, user operators); the fast path leaves them
+    /// NaN otherwise (the exact path has them from its lookup anyway).
+    pub with_normals: bool,
+    /// The samples' geodesic distances are used (geodesic criterion or geodesic-area K); they are
+    /// NaN otherwise (the estimate costs an `asin`, or a chord sum, per sample).
+    pub with_geodesic: bool,
+}
+
+/// Which sampler runs: the fast path where it keeps the exact path's answers, or the exact path
+/// everywhere (the reference of the fast one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SamplingPath {
+    /// Interior samples straight from the face-id buffer and the f32 patches (default).
+    #[default]
+    Fast,
+    /// Every sample located and evaluated on its own, in f64.
+    Exact,
+}
