@@ -1,12 +1,19 @@
 //! # uvfeat-core
 //!
 //! Multi-scale geometric features of triangle meshes computed in the mesh's UV parameter space
-//! (Andreadis, Papaioannou, Mavridis, GRAPP 2015). The modules follow the pipeline:
+//! (Andreadis, Papaioannou, Mavridis, GRAPP 2015). The modules follow the pipeline, each using
+//! only the ones above it (checked by the test suite):
 //!
 //! 1. [`mesh`]: validated input, welding, charts, edge classes, seam transition maps;
-//! 2. [`raster`]: rasterised coverage and per-frame geometry buffers;
-//! 3. [`distortion`] and [`relocation`]: local metric and seam-crossing of parametric points;
-//! 4. [`atlas`]: the object tying them together, rebuilt per frame.
+//! 2. [`distortion`] and [`frame`]: the local metric and the per-frame quantities;
+//! 3. [`raster`]: rasterised coverage and per-frame geometry buffers;
+//! 4. [`atlas`]: the object tying them together, rebuilt per frame;
+//! 5. [`relocation`] and [`lookup`]: seam crossing of parametric points, and the surface there;
+//! 6. [`sampling`]: the Monte Carlo neighbourhood of a parametric point;
+//! 7. [`features`]: the estimators over a neighbourhood's samples;
+//! 8. [`settings`], [`evaluation`] and [`output`]: what is asked, the features at one point,
+//!    and the maps, per-vertex values and neighbourhood tiles;
+//! 9. [`reference`]: the object-space reference the parametric values are checked against.
 //!
 //! Conventions (DESIGN.md §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
 //! at index `j * R + i`, centred at `((i + 0.5)/R, (j + 0.5)/R)`; normals outward by the
