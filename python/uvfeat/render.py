@@ -35,7 +35,10 @@ def draw_vertex_values(ax, positions: np.ndarray, faces: np.ndarray, values: np.
     normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     length = np.linalg.norm(normals, axis=1)
     facing = np.abs(normals[:, 2]) / np.where(length > 0, length, 1.0)
-    face_values = np.nanmean(values[faces], axis=1) if np.isnan(values).any() else values[faces].mean(axis=1)
+    corner_values = values[faces]
+    known = np.isfinite(corner_values).sum(axis=1)
+    # The mean of the known corners; NaN (drawn grey) where no corner is known.
+    face_values = np.where(known > 0, np.nansum(corner_values, axis=1) / np.maximum(known, 1), np.nan)
     norm = matplotlib.colors.Normalize(low, high)
     colours = matplotlib.colormaps[cmap](norm(np.nan_to_num(face_values, nan=low)))
     colours[~np.isfinite(face_values)] = (0.5, 0.5, 0.5, 1.0)
