@@ -22,6 +22,7 @@ from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
 from .compute import compute
+from .converged import ConvergedReference, converged_reference
 from .errors import (
     AnimationError,
     InvalidMeshError,
@@ -48,6 +49,8 @@ __all__ = [
     "GltfAnimation",
     "Neighbourhoods",
     "compute",
+    "ConvergedReference",
+    "converged_reference",
     "InvalidMeshError",
     "InvalidParameterError",
     "Location",

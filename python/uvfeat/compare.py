@@ -58,23 +58,32 @@ class Comparison:
     errors: dict[str, dict]
     timings: dict[str, float]
     settings: dict = field(default_factory=dict)
+    truth: dict[str, np.ndarray] | None = None
+    """The converged reference the errors are measured against (None: the reference itself)."""
+    reference_errors: dict[str, dict] | None = None
+    """Errors of the reference itself against the converged truth (None without one)."""
 
     def to_dict(self) -> dict:
         """Everything but the arrays, JSON-ready."""
         return {"uvfeat": __version__, "mesh": self.mesh.name, "vertices": self.mesh.n_vertices,
                 "faces": self.mesh.n_faces, "radius": self.radius, "settings": self.settings,
-                "errors": self.errors, "timings_s": self.timings}
+                "errors": self.errors, "reference_errors": self.reference_errors, "timings_s": self.timings}
 
 
 def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"], resolution: int = 1024, compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
             gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"], query: str = DEFAULT_OPTIONS["query"],
-            method: str = DEFAULT_OPTIONS["method"], sampling: str = DEFAULT_OPTIONS["sampling"]) -> Comparison:
+            method: str = DEFAULT_OPTIONS["method"], sampling: str = DEFAULT_OPTIONS["sampling"],
+            truth_levels: int = 2) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
-    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"fast"`` or ``"exact"``) and the object-space reference on ``mesh`` for ``features`` at
-    ``radius`` (object units or ``"2%"``) and measures both."""
+    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"fast"`` or ``"exact"``) and the
+    object-space reference on ``mesh`` for ``features`` at ``radius`` (object units or ``"2%"``),
+    times both, and measures both against the truth: the reference on the same surface refined
+    until it converges (up to ``truth_levels`` midpoint subdivisions, see
+    :func:`uvfeat.converged.converged_reference`), or the reference itself with ``truth_levels=0``."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
     from .options import feature_names
+    from .converged import converged_reference
     from .reference import Reference
 
     names = feature_names(features)
@@ -82,6 +91,9 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
         raise InvalidParameterError(f"gaussian_method {gaussian_method!r} is not one of {list(PARAMETRIC_GAUSSIAN)}")
     reference = Reference(mesh)
     ref_values = reference.compute(names, radius, gaussian_method=gaussian_method)
+    truth = None
+    if truth_levels:
+        truth = converged_reference(mesh, names, radius, max_levels=int(truth_levels), gaussian_method=gaussian_method)
     if not mesh.has_uvs:
         mesh = mesh.with_atlas(resolution=resolution)
     atlas = Atlas(mesh, resolution=resolution)
@@ -112,8 +124,15 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
                 "query": query, "charts": mesh.n_charts,
                 "mean_reference_samples": float(np.mean(reference.last_samples)),
                 "mean_parametric_samples": float(first.summary["mean_valid_samples"])}
-    errors = {name: absolute_errors(values[name], ref_values[name]) for name in names}
-    return Comparison(mesh, float(first.radius), values, ref_values, errors, timings, settings)
+    if truth is None:
+        errors = {name: absolute_errors(values[name], ref_values[name]) for name in names}
+        return Comparison(mesh, float(first.radius), values, ref_values, errors, timings, settings)
+    settings.update(truth_level=truth.level, truth_faces=truth.faces[-1], truth_changes=truth.changes,
+                    truth_converged=truth.converged)
+    errors = {name: absolute_errors(values[name], truth[name]) for name in names}
+    reference_errors = {name: absolute_errors(ref_values[name], truth[name]) for name in names}
+    return Comparison(mesh, float(first.radius), values, ref_values, errors, timings, settings, truth.values,
+                      reference_errors)
 
 
 def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike) -> dict[str, str]:
