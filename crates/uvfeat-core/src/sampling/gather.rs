@@ -10,7 +10,8 @@ use super::pattern::Placement;
 use super::per_chart::gather_per_chart;
 use super::reach::Reach;
 use super::sample::{unit_ellipse_area, Sample, SampleCounts};
-use super::settings::SamplerSettings;
+use super::settings::{Overlaps, SamplerSettings};
+use super::sheets::keep_first_routes;
 use crate::atlas::Atlas;
 use crate::relocation::Relocation;
 use glam::DVec2;
@@ -32,9 +33,28 @@ pub fn gather(
         return gather_per_chart(atlas, centre, pattern, placement, reach, settings, out);
     }
     let domain = Domain::new(centre, placement, reach, settings);
-    if fast_path::applies(atlas, settings) {
-        return fast_path::gather(atlas, centre, pattern, &domain, out);
+    let first = out.len();
+    let mut counts = if fast_path::applies(atlas, settings) {
+        fast_path::gather(atlas, centre, pattern, &domain, out)
+    } else {
+        gather_exact(atlas, centre, pattern, &domain, settings, out)
+    };
+    if settings.overlaps == Overlaps::Drop {
+        let dropped = keep_first_routes(atlas, centre, pattern, &domain, settings, first, out);
+        counts.valid -= dropped;
     }
+    counts
+}
+
+/// The exact path: every pattern point located and evaluated on its own.
+fn gather_exact(
+    atlas: &Atlas,
+    centre: &Centre,
+    pattern: &[DVec2],
+    domain: &Domain,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+) -> SampleCounts {
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let mut counts = SampleCounts::default();
     for (pattern_index, &disk) in pattern.iter().enumerate() {

@@ -16,6 +16,7 @@ mod per_chart;
 mod reach;
 mod sample;
 mod settings;
+mod sheets;
 
 pub use centre::{centre_at, Centre};
 pub use domain_growth::{gather_covering, MAX_MARGIN};
@@ -26,4 +27,4 @@ pub use pattern::{
 };
 pub use reach::Reach;
 pub use sample::{Sample, SampleCounts};
-pub use settings::{Criterion, SamplerSettings, SamplingPath};
+pub use settings::{Criterion, Overlaps, SamplerSettings, SamplingPath};

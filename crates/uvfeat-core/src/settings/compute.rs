@@ -5,7 +5,7 @@ use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, SamplerSettings, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, SamplerSettings, SamplingPath};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,6 +35,8 @@ pub struct ComputeSettings {
     pub geodesic: Geodesic,
     /// Fast path for interior samples (default) or the exact path everywhere (its reference).
     pub sampling: SamplingPath,
+    /// Surface reached along two routes through seams: kept (default) or counted once.
+    pub overlaps: Overlaps,
     /// Seed of the pattern and the per-pixel rotations (0).
     pub seed: u64,
     /// Two-stage adaptive sampling (off).
@@ -71,6 +73,7 @@ impl ComputeSettings {
             lookup: Lookup::Triangle,
             geodesic: Geodesic::Arc,
             sampling: SamplingPath::Fast,
+            overlaps: Overlaps::Keep,
             seed: 0,
             adaptive: false,
             tau: 0.01,
@@ -133,6 +136,7 @@ impl ComputeSettings {
             with_geodesic: self.criterion == Criterion::Geodesic
                 || (self.gaussian_method == GaussianMethod::GeodesicArea
                     && self.features.iter().any(|f| f.uses_gaussian_curvature())),
+            overlaps: self.overlaps,
         }
     }
 

@@ -8,7 +8,7 @@ use crate::features::{CurvatureMethod, GaussianMethod, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::raster::Precision;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, SamplingPath};
 
 /// An option whose value is one of a few names.
 pub trait Choice: Copy + PartialEq + Sized + 'static {
@@ -59,6 +59,7 @@ crate::choice!(Criterion, "criterion", [("euclidean", Criterion::Euclidean), ("g
 crate::choice!(Lookup, "lookup", [("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)]);
 crate::choice!(Geodesic, "geodesic", [("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)]);
 crate::choice!(SamplingPath, "sampling", [("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)]);
+crate::choice!(Overlaps, "overlaps", [("keep", Overlaps::Keep), ("drop", Overlaps::Drop)]);
 crate::choice!(
     GaussianMethod,
     "gaussian_method",
@@ -103,6 +104,7 @@ pub fn named_options(settings: &ComputeSettings) -> Vec<(&'static str, OptionVal
         ("lookup", Text(settings.lookup.name())),
         ("geodesic", Text(settings.geodesic.name())),
         ("sampling", Text(settings.sampling.name())),
+        ("overlaps", Text(settings.overlaps.name())),
         ("gaussian_method", Text(settings.gaussian_method.name())),
         ("method", Text(settings.method.name())),
         ("volume_weighting", Text(settings.volume_weighting.name())),
@@ -122,6 +124,7 @@ pub fn option_choices() -> Vec<(&'static str, Vec<&'static str>)> {
         (Lookup::OPTION, Lookup::names()),
         (Geodesic::OPTION, Geodesic::names()),
         (SamplingPath::OPTION, SamplingPath::names()),
+        (Overlaps::OPTION, Overlaps::names()),
         (GaussianMethod::OPTION, GaussianMethod::names()),
         (CurvatureMethod::OPTION, CurvatureMethod::names()),
         (VolumeWeighting::OPTION, VolumeWeighting::names()),
@@ -197,6 +200,7 @@ impl ComputeSettings {
             "lookup" => self.lookup = Choice::named(text()?)?,
             "geodesic" => self.geodesic = Choice::named(text()?)?,
             "sampling" => self.sampling = Choice::named(text()?)?,
+            "overlaps" => self.overlaps = Choice::named(text()?)?,
             "gaussian_method" => self.gaussian_method = Choice::named(text()?)?,
             "method" => self.method = Choice::named(text()?)?,
             "volume_weighting" => self.volume_weighting = Choice::named(text()?)?,
@@ -262,6 +266,7 @@ mod tests {
         }
         assert!(default_first::<Relocation>() && default_first::<Criterion>() && default_first::<Lookup>());
         assert!(default_first::<Geodesic>() && default_first::<SamplingPath>() && default_first::<GaussianMethod>());
+        assert!(default_first::<Overlaps>());
         assert!(default_first::<CurvatureMethod>() && default_first::<VolumeWeighting>());
         assert!(default_first::<VertexQuery>() && default_first::<Precision>());
         assert_eq!(SamplingPath::named("exact").unwrap(), SamplingPath::Exact);
