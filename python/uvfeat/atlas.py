@@ -191,8 +191,10 @@ class Atlas:
             self.__dict__.pop(name, None)
 
     # -- features -------------------------------------------------------------------------------
-    def compute(self, features, radius, samples: int = ARGUMENT_DEFAULTS["samples"], compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"], adaptive: bool = ARGUMENT_DEFAULTS["adaptive"],
-                seed: int = ARGUMENT_DEFAULTS["seed"], *, paper_mode: bool = False, **options) -> dict:
+    def compute(self, features, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
+                compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+                adaptive: bool = ARGUMENT_DEFAULTS["adaptive"], seed: int = ARGUMENT_DEFAULTS["seed"], *,
+                paper_mode: bool = False, **options) -> dict:
         """Multi-scale features at every texel of a ``compute_resolution``² texture.
 
         Parameters
@@ -234,8 +236,9 @@ class Atlas:
         return compute_maps(self, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
 
-    def neighbourhoods(self, radius, samples: int = ARGUMENT_DEFAULTS["samples"], compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"], seed: int = ARGUMENT_DEFAULTS["seed"],
-                       tile_texels: int = 16384, **options):
+    def neighbourhoods(self, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
+                       compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+                       seed: int = ARGUMENT_DEFAULTS["seed"], tile_texels: int = 16384, **options):
         """The weighted neighbourhood samples of every texel, in tiles, for user-defined operators
         ``F(p, S(p))`` (DESIGN.md §2.9). Yields :class:`Neighbourhoods` tuples whose arrays hold
         ``tile_texels x samples`` samples at most (memory-bounded)."""
@@ -249,8 +252,9 @@ class Atlas:
             if len(texels):
                 yield Neighbourhoods(texels, centres, normals, positions, sample_normals, areas, valid, resolution)
 
-    def map_operator(self, operator, radius, samples: int = ARGUMENT_DEFAULTS["samples"], compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"], seed: int = ARGUMENT_DEFAULTS["seed"],
-                     tile_texels: int = 16384, **options) -> np.ndarray:
+    def map_operator(self, operator, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
+                     compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+                     seed: int = ARGUMENT_DEFAULTS["seed"], tile_texels: int = 16384, **options) -> np.ndarray:
         """Applies ``operator(neighbourhoods) -> (T,) values`` tile by tile and returns the
         ``(W_c, W_c)`` float32 map (NaN off the charts)."""
         out = None

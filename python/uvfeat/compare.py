@@ -70,9 +70,11 @@ class Comparison:
                 "errors": self.errors, "reference_errors": self.reference_errors, "timings_s": self.timings}
 
 
-def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"], resolution: int = 1024, compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
-            gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"], query: str = DEFAULT_OPTIONS["query"],
-            method: str = DEFAULT_OPTIONS["method"], sampling: str = DEFAULT_OPTIONS["sampling"],
+def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"], resolution: int = 1024,
+            compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+            gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"],
+            query: str = DEFAULT_OPTIONS["query"], method: str = DEFAULT_OPTIONS["method"],
+            sampling: str = DEFAULT_OPTIONS["sampling"],
             truth_levels: int = 2) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
     ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"fast"`` or ``"exact"``) and the
@@ -93,7 +95,8 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     ref_values = reference.compute(names, radius, gaussian_method=gaussian_method)
     truth = None
     if truth_levels:
-        truth = converged_reference(mesh, names, radius, max_levels=int(truth_levels), gaussian_method=gaussian_method)
+        truth = converged_reference(mesh, names, radius, max_levels=int(truth_levels), coarse=ref_values,
+                                    gaussian_method=gaussian_method)
     if not mesh.has_uvs:
         mesh = mesh.with_atlas(resolution=resolution)
     atlas = Atlas(mesh, resolution=resolution)

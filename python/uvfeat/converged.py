@@ -63,7 +63,8 @@ def _change(finer: np.ndarray, coarser: np.ndarray) -> float:
 
 
 def converged_reference(mesh: Mesh, features, radius, *, vertices=None, tolerance: float = 0.5, max_levels: int = 3,
-                        min_levels: int = 1, progress=None, **options) -> ConvergedReference:
+                        min_levels: int = 1, progress=None, coarse: dict[str, np.ndarray] | None = None,
+                        **options) -> ConvergedReference:
     """The object-space reference of ``mesh``'s surface, refined until it converges.
 
     Parameters
@@ -82,6 +83,9 @@ def converged_reference(mesh: Mesh, features, radius, *, vertices=None, toleranc
         Subdivision levels tried at most (each multiplies the faces by 4) and at least.
     progress : callable, optional
         Called as ``progress(level, faces)`` before each level.
+    coarse : dict, optional
+        The reference's values on ``mesh`` itself at every row (level 0), when the caller has
+        them already: level 0 is then not computed again (its time is recorded as 0).
     """
     if not isinstance(mesh, Mesh):
         raise InvalidParameterError(f"expected a uvfeat.Mesh, got {type(mesh).__name__}")
@@ -105,8 +109,11 @@ def converged_reference(mesh: Mesh, features, radius, *, vertices=None, toleranc
             positions, faces = trimesh.remesh.subdivide(positions, faces)
         if progress is not None:
             progress(level, len(faces))
-        refined = Mesh(positions, faces, name=f"{mesh.name} x{4 ** level}")
-        values = Reference(refined).compute(names, r, vertices=welded[rows], **options)
+        if level == 0 and coarse is not None:
+            values = {name: np.asarray(coarse[name])[rows] for name in names}
+        else:
+            refined = Mesh(positions, faces, name=f"{mesh.name} x{4 ** level}")
+            values = Reference(refined).compute(names, r, vertices=welded[rows], **options)
         result.faces.append(len(faces))
         result.timings_s.append(time.perf_counter() - started)
         result.values, result.level = values, level

@@ -43,6 +43,13 @@ impl<'a> Domain<'a> {
         Self { ellipse: unit_ellipse(centre, settings), placement, reach, uniform, settings }
     }
 
+    /// `true` when the parametric `offset` from the centre lies inside the domain (the inverse of
+    /// [`Domain::offset`]: `ellipse^-1 offset` within its direction's margin).
+    pub fn contains(&self, offset: DVec2) -> bool {
+        let w = self.ellipse.inverse() * offset;
+        w.length() < self.uniform.unwrap_or_else(|| self.reach.at(w.y.atan2(w.x)))
+    }
+
     /// The offset of the pattern point `disk`.
     #[inline]
     pub fn offset(&self, disk: DVec2) -> Offset {

@@ -74,14 +74,12 @@ pub(super) fn keep_first_routes(
     if sheets.len() == 1 {
         return 0;
     }
-    let inverse_ellipse = domain.ellipse.inverse();
     let mut dropped = vec![false; out.len()];
     for &(index, id, uv) in &crossed {
         let own = sheets[id];
         let reached_first = sheets.iter().filter(|s| s.chart == own.chart && s.precedes(&own)).any(|s| {
             let offset = s.m.inverse() * (uv - s.shift);
-            let w = inverse_ellipse * offset;
-            if w.length() >= domain.reach.at(w.y.atan2(w.x)) {
+            if !domain.contains(offset) {
                 return false;
             }
             match locate_target(atlas, centre, centre.uv + offset, settings) {

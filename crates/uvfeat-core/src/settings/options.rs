@@ -152,13 +152,12 @@ impl ComputeSettings {
     /// a value of the wrong kind, or a name that is not one of the option's choices. Ranges are
     /// checked by [`ComputeSettings::validate`].
     pub fn set_option(&mut self, name: &str, value: &GivenValue) -> Result<()> {
-        let option = named_options(self).into_iter().map(|(n, _)| n).find(|n| *n == name).ok_or_else(|| {
-            let valid: Vec<&str> = named_options(self).into_iter().map(|(n, _)| n).collect();
-            UvfeatError::InvalidParameter {
-                name: "options",
-                reason: format!("unknown option {name:?}; valid: {valid:?}"),
-            }
-        })?;
+        let names: Vec<&'static str> = named_options(self).into_iter().map(|(n, _)| n).collect();
+        let unknown = || UvfeatError::InvalidParameter {
+            name: "options",
+            reason: format!("unknown option {name:?}; valid: {names:?}"),
+        };
+        let option = *names.iter().find(|n| **n == name).ok_or_else(unknown)?;
         let wrong_kind = |expected: &str| UvfeatError::InvalidParameter {
             name: option,
             reason: format!("expects {expected}, got {value:?}"),
@@ -207,7 +206,8 @@ impl ComputeSettings {
             "rho_min" => self.rho_min_fraction = number()?,
             "flat_tol" => self.flat_tol = number()?,
             "tau" => self.tau = number()?,
-            _ => self.standard_errors = flag()?,
+            "standard_error" => self.standard_errors = flag()?,
+            _ => return Err(unknown()),
         }
         Ok(())
     }
