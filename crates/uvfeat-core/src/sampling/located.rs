@@ -12,7 +12,7 @@ use glam::{DMat2, DVec2};
 
 /// Where a parametric `target` reached from the centre lies on the surface.
 enum Reached {
-    Surface { point: SurfacePoint, m_path: DMat2, own_chart_uv: Option<DVec2> },
+    Surface { point: SurfacePoint, m_path: DMat2, own_chart_uv: Option<DVec2>, returned_uv: Option<DVec2> },
     Border,
     Missing,
 }
@@ -35,22 +35,43 @@ fn reached(atlas: &Atlas, centre: &Centre, located: Located, settings: &SamplerS
     };
     match settings.lookup.evaluate(atlas, face, uv, chart) {
         Some(point) => {
-            Reached::Surface { point, m_path, own_chart_uv: (jumps == 0 && chart == centre.chart).then_some(uv) }
+            let in_centre_chart = chart == centre.chart;
+            Reached::Surface {
+                point,
+                m_path,
+                own_chart_uv: (jumps == 0 && in_centre_chart).then_some(uv),
+                returned_uv: (jumps > 0 && in_centre_chart).then_some(uv),
+            }
         }
         None => Reached::Missing,
     }
 }
 
-/// Distance `|q - p|` of the surface point `q` reached at `target` when it lies in the ball
-/// `S(p, r)`; `None` outside it or off the surface (a mesh border or a failed relocation ends the
-/// neighbourhood there too).
-pub fn distance_inside(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Option<f64> {
-    let Reached::Surface { point, .. } = reach_target(atlas, centre, target, settings) else {
+/// A surface point in the ball `S(p, r)`, reached at a parametric target by a probe of the
+/// coverage check.
+pub struct Probed {
+    /// `|q - p|`.
+    pub distance: f64,
+    /// Where `q` lies in the centre's chart when the path to it crossed seams and came back into
+    /// that chart at a point the straight segment from the centre reaches without a crossing:
+    /// the same surface point seen directly (around a tube, for instance).
+    pub returned_uv: Option<DVec2>,
+}
+
+/// The surface point reached at `target` when it lies in the ball `S(p, r)`; `None` outside it or
+/// off the surface (a mesh border or a failed relocation ends the neighbourhood there too).
+pub fn probe_inside(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Option<Probed> {
+    let Reached::Surface { point, returned_uv, .. } = reach_target(atlas, centre, target, settings) else {
         return None;
     };
     let offset = point.position - centre.position;
     let distance = offset.length();
-    is_inside(distance, centre.normal.dot(offset) / distance.max(f64::MIN_POSITIVE), settings).then_some(distance)
+    if !is_inside(distance, centre.normal.dot(offset) / distance.max(f64::MIN_POSITIVE), settings) {
+        return None;
+    }
+    let seen_directly =
+        |uv: &DVec2| matches!(locate_target(atlas, centre, *uv, settings), Located::Inside { jumps: 0, .. });
+    Some(Probed { distance, returned_uv: returned_uv.filter(seen_directly) })
 }
 
 /// Looks up and tests one located pattern point, whose cell stands for `uv_area` of the centre's
@@ -67,7 +88,7 @@ pub(super) fn located_sample(
     counts: &mut SampleCounts,
 ) {
     match reached(atlas, centre, located, settings) {
-        Reached::Surface { point, m_path, own_chart_uv } => {
+        Reached::Surface { point, m_path, own_chart_uv, .. } => {
             let uv_area = m_path.determinant().abs() * uv_area;
             let candidate = Candidate { point, uv_area, own_chart_uv, pattern_index };
             counts.valid += u32::from(accept(atlas, centre, candidate, settings, out));
