@@ -29,6 +29,22 @@ def test_missing_unreadable_and_unsupported_files(tmp_path):
         uvfeat.load(tmp_path)
 
 
+def test_binary_bytes_in_a_text_format_name_the_problem(tmp_path):
+    rng = np.random.default_rng(3)
+    for extension in ("obj", "off"):
+        path = tmp_path / f"random.{extension}"
+        path.write_bytes(rng.integers(0, 256, 3000, dtype=np.uint8).tobytes() + b"\0")
+        with pytest.raises(MeshFileError, match=f"binary data in a text {extension.upper()} file") as raised:
+            uvfeat.load(path)
+        assert "module" not in str(raised.value)
+
+
+def test_latin1_obj_is_read(tmp_path):
+    path = tmp_path / "latin.obj"
+    path.write_bytes(b"# caf\xe9 cr\xe8me\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n")
+    assert uvfeat.load(path, uv="require").n_faces == 1
+
+
 def test_empty_file_is_an_error(tmp_path):
     (tmp_path / "empty.obj").write_text("# nothing\n")
     with pytest.raises((uvfeat.InvalidMeshError, MeshFileError)):

@@ -16,6 +16,12 @@ SUPPORTED_FORMATS = ("obj", "ply", "glb", "gltf", "off", "stl")
 #: What ``load(..., uv=...)`` accepts.
 UV_POLICIES = ("auto", "require", "xatlas")
 
+#: Formats that are text only: a NUL byte in them means the file is not what its name says.
+TEXT_FORMATS = ("obj", "off")
+
+#: Bytes read to tell a text file from a binary one.
+SNIFF_BYTES = 1 << 16
+
 
 def _trimesh_geometry(path: str):
     import trimesh
@@ -43,6 +49,10 @@ def _parts(path: str) -> list:
     extension = os.path.splitext(path)[1].lower().lstrip(".")
     if extension not in SUPPORTED_FORMATS:
         raise MeshFileError(f"unsupported format {extension!r} of {path!r}; supported: {', '.join(SUPPORTED_FORMATS)}")
+    if extension in TEXT_FORMATS:
+        with open(path, "rb") as file:
+            if b"\0" in file.read(SNIFF_BYTES):
+                raise MeshFileError(f"cannot read {path!r}: binary data in a text {extension.upper()} file")
     return _trimesh_geometry(path)
 
 
