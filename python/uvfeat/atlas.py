@@ -278,6 +278,13 @@ class Atlas:
         out["precision"] = self.precision
         return out
 
+    @property
+    def overlap_share(self) -> float:
+        """Share of the covered texels that several triangles claim (overlapping UVs; 0 for a
+        clean atlas). The first triangle keeps such a texel, so the others are not sampled there."""
+        d = self.diagnostics
+        return d["overlapping_texels"] / max(d["covered_texels"], 1)
+
     def warnings(self) -> list[str]:
         """Plain-language warnings about the diagnostics, empty when all is well."""
         d = self.diagnostics

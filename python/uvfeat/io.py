@@ -7,6 +7,7 @@ import warnings
 
 import numpy as np
 
+from .atlas import Atlas
 from .errors import InvalidMeshError, MeshFileError, UVError, UVWarning
 from .mesh import Mesh
 
@@ -21,6 +22,13 @@ TEXT_FORMATS = ("obj", "off")
 
 #: Bytes read to tell a text file from a binary one.
 SNIFF_BYTES = 1 << 16
+
+#: With ``uv="auto"``, a file whose UVs overlap on more than this share of their texels is
+#: re-atlased: past it the overlaps are folded or stacked parts, not a few stray triangles.
+MAX_OVERLAP_SHARE = 0.01
+
+#: Buffer size of the overlap check (about 50 ms for 100K faces).
+OVERLAP_CHECK_RESOLUTION = 512
 
 
 def _trimesh_geometry(path: str):
@@ -96,9 +104,13 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
     path : str or PathLike
         A file of one of :data:`SUPPORTED_FORMATS`.
     uv : {"auto", "require", "xatlas"}
-        ``"auto"`` (default) keeps the file's UVs and builds an xatlas atlas when there are none;
-        ``"require"`` raises :class:`~uvfeat.errors.UVError` instead; ``"xatlas"`` always builds
-        a new atlas (use it for overlapping or tiled UVs).
+        ``"auto"`` (default) keeps the file's UVs and builds an xatlas atlas when there are none
+        or when they overlap on more than :data:`MAX_OVERLAP_SHARE` of their texels (with a
+        :class:`~uvfeat.errors.UVWarning`; smaller overlaps are kept, and
+        :meth:`Atlas.warnings` counts them); ``"require"`` keeps the file's UVs as they are and
+        raises :class:`~uvfeat.errors.UVError` when there are none; ``"xatlas"`` always builds a
+        new atlas (tiled UVs, for instance). Per-vertex results follow the file's vertex order
+        whichever atlas is used.
     resolution : int
         Geometry-buffer resolution an automatic atlas is packed for (2+ texel gutters there).
     normalize_uv : bool
@@ -129,7 +141,15 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
         part_uvs = _tile_part_uvs(part_uvs)
         warnings.warn(f"{name}: {len(parts)} meshes merged; their UV layouts were tiled side by side into one "
                       "atlas so they do not overlap", UVWarning, stacklevel=2)
-    return Mesh(positions, faces, np.concatenate(part_uvs), name=name, normalize_uv=normalize_uv)
+    mesh = Mesh(positions, faces, np.concatenate(part_uvs), name=name, normalize_uv=normalize_uv)
+    if uv == "auto":
+        share = Atlas(mesh, OVERLAP_CHECK_RESOLUTION).overlap_share
+        if share > MAX_OVERLAP_SHARE:
+            warnings.warn(f"{name}: the file's UVs overlap on {share:.1%} of their texels, so the features there would "
+                          "mix surface points; re-atlased with xatlas (vertex order unchanged; uv='require' keeps "
+                          "the file's UVs)", UVWarning, stacklevel=2)
+            return Mesh(positions, faces, name=name).with_atlas(resolution=resolution)
+    return mesh
 
 
 def _tile_part_uvs(part_uvs: list[np.ndarray], margin: float = 0.01) -> list[np.ndarray]:

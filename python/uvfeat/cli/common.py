@@ -75,8 +75,8 @@ def add_atlas_options(parser: argparse.ArgumentParser) -> None:
 
 def add_uv_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto",
-                        help="auto: use the file's UVs, xatlas when there are none (default); require: fail "
-                        "without UVs; xatlas: always build a new atlas")
+                        help="auto: use the file's UVs, xatlas when there are none or they overlap (default); "
+                        "require: the file's UVs as they are, fail without UVs; xatlas: always build a new atlas")
     parser.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising them")
 
 
