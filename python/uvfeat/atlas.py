@@ -22,6 +22,17 @@ from .options import ARGUMENT_DEFAULTS, check_resolution
 PRECISIONS = ("f32", "f16")
 
 
+def _uv_point(uv, name: str = "uv") -> tuple[float, float]:
+    """``uv`` as a pair of finite floats, or an :class:`InvalidParameterError` naming it."""
+    try:
+        u, v = (float(x) for x in uv)
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameterError(f"{name} must be a pair of numbers, got {uv!r}") from exc
+    if not (np.isfinite(u) and np.isfinite(v)):
+        raise InvalidParameterError(f"{name} must be finite, got ({u}, {v})")
+    return u, v
+
+
 def memory_budget() -> int:
     """Bytes the buffers of one atlas may take: half of the physical memory."""
     try:
@@ -314,31 +325,36 @@ class Atlas:
     # -- parametric queries ---------------------------------------------------------------------
     def chart_at(self, uv) -> int:
         """Chart id of the texel containing ``uv`` (-1 when empty or outside [0, 1)^2)."""
+        u, v = _uv_point(uv)
+        if not (0.0 <= u < 1.0 and 0.0 <= v < 1.0):
+            return -1
         r = self.resolution
-        i, j = int(np.floor(uv[0] * r)), int(np.floor(uv[1] * r))
-        return int(self.chart[j, i]) if 0 <= i < r and 0 <= j < r else -1
+        return int(self.chart[min(int(v * r), r - 1), min(int(u * r), r - 1)])
 
     def _chart_of(self, uv, chart: int | None) -> int:
         chart = self.chart_at(uv) if chart is None else int(chart)
-        if chart < 0:
-            raise InvalidParameterError(f"uv {tuple(uv)} is not on a chart; pass chart= explicitly")
+        if not 0 <= chart < self.mesh.n_charts:
+            raise InvalidParameterError(f"uv {tuple(uv)} is not on a chart; pass chart= explicitly"
+                                        if chart < 0 else f"chart {chart} does not exist ({self.mesh.n_charts} charts)")
         return chart
 
     def locate(self, start, target, chart: int | None = None, max_jumps: int = 32) -> Location:
         """Relocates ``target``, an offset of ``start`` (in ``chart``, default: the chart at
         ``start``), across seams (DESIGN.md §1.5)."""
-        status, landed, uv, m, jumps = self._core.locate(tuple(map(float, start)), self._chart_of(start, chart),
-                                                         tuple(map(float, target)), int(max_jumps))
+        if not 0 <= int(max_jumps) < 1 << 31:
+            raise InvalidParameterError(f"max_jumps must be a non-negative count, got {max_jumps}")
+        status, landed, uv, m, jumps = self._core.locate(_uv_point(start), self._chart_of(start, chart),
+                                                         _uv_point(target, "target"), int(max_jumps))
         return Location(status, landed, uv, None if m is None else np.array(m), jumps)
 
     def cross_seam(self, uv, chart: int | None = None) -> SeamCrossing | None:
         """Maps ``uv`` in a border texel across its seam (``None`` where the mesh itself ends)."""
-        out = self._core.cross_seam(tuple(map(float, uv)), self._chart_of(uv, chart))
+        out = self._core.cross_seam(_uv_point(uv), self._chart_of(uv, chart))
         return None if out is None else SeamCrossing(out[0], out[1], np.array(out[2]), out[3])
 
     def surface_point(self, uv, chart: int | None = None):
         """``(position, normal, face)`` of the surface at ``uv`` (exact triangle lookup), or None."""
-        out = self._core.surface_point(tuple(map(float, uv)), self._chart_of(uv, chart))
+        out = self._core.surface_point(_uv_point(uv), self._chart_of(uv, chart))
         return None if out is None else (np.array(out[0]), np.array(out[1]), out[2])
 
     def __repr__(self) -> str:

@@ -36,10 +36,12 @@ def _trimesh_geometry(path: str):
 
     try:
         loaded = trimesh.load(path, process=False)
+        # A scene's parts are only decoded here (their textures too): still part of the reading.
+        parts = loaded.dump() if isinstance(loaded, trimesh.Scene) and loaded.geometry else []
     except Exception as exc:  # trimesh raises many types for broken files
         raise MeshFileError(f"cannot read {path!r}: {exc}") from exc
     if isinstance(loaded, trimesh.Scene):
-        meshes = [g for g in loaded.dump() if isinstance(g, trimesh.Trimesh)] if loaded.geometry else []
+        meshes = [g for g in parts if isinstance(g, trimesh.Trimesh)]
         if not meshes:
             raise InvalidMeshError(f"{path!r} contains no triangle mesh")
         return meshes
