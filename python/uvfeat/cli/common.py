@@ -6,7 +6,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import time
-import warnings
 
 from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, FEATURES
 
@@ -37,12 +36,9 @@ def steps(out, total: int):
 
 def load_mesh(path: str, args):
     """The mesh at ``path`` loaded with the command's UV options, and its warnings as notes."""
-    from ..io import load
+    from ..feature_files import load_with_notes
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        mesh = load(path, uv=args.uv, resolution=args.resolution, normalize_uv=not args.strict_uv)
-    return mesh, [str(w.message) for w in caught]
+    return load_with_notes(path, args.uv, args.resolution, args.strict_uv)
 
 
 def on_file(writer):
@@ -55,11 +51,6 @@ def on_file(writer):
         return 0
 
     return command
-
-
-def radius_tag(radius) -> str:
-    """A radius as written in file names: ``2%`` -> ``2pct``, ``0.05`` -> ``0p05``."""
-    return str(radius).strip().replace("%", "pct").replace(".", "p")
 
 
 def print_notes_and_outputs(out, notes: list[str], written: str, folder: str) -> None:
