@@ -4,7 +4,7 @@ pictures."""
 from __future__ import annotations
 
 from ..feature_files import FeatureJob, write_feature_files
-from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
+from .common import add_computation_options, add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 
 def add_command(commands) -> None:
@@ -12,12 +12,7 @@ def add_command(commands) -> None:
                                  description="Writes per_vertex_r*.ply (vertex properties + colours) and .npz, "
                                  "FEATURE_r*.npy and .png maps (v up), and summary.json.")
     add_feature_command_options(parser, "; comma-separated for several scales")
-    parser.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (DESIGN.md §1.8)")
-    parser.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
-    parser.add_argument("--directions", choices=("d1", "d2"), default=None,
-                        help="draw this principal direction (d1 of k1, d2 of k2) as segments on the map pictures; "
-                        "needs --method fit")
-    parser.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
+    add_computation_options(parser)
     parser.set_defaults(handler=on_file(write_features))
 
 
