@@ -27,10 +27,12 @@ from .compute import compute
 from .converged import ConvergedReference, converged_reference
 from .errors import (
     AnimationError,
+    ClusterError,
     InvalidMeshError,
     InvalidParameterError,
     MeshFileError,
     MeshWarning,
+    MissingDependencyError,
     ResolutionTooLargeError,
     UvfeatError,
     UVError,
@@ -46,6 +48,7 @@ __all__ = [
     "AnimationError",
     "AnimationFrame",
     "Atlas",
+    "ClusterError",
     "FEATURES",
     "FeatureMap",
     "GltfAnimation",
@@ -59,6 +62,7 @@ __all__ = [
     "Mesh",
     "MeshFileError",
     "MeshWarning",
+    "MissingDependencyError",
     "ResolutionTooLargeError",
     "SUPPORTED_FORMATS",
     "SeamCrossing",
