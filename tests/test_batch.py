@@ -186,5 +186,6 @@ def test_bad_options_are_named_before_any_cluster_starts(tmp_path, capsys):
     with pytest.raises(InvalidParameterError, match="unknown feature"):
         uvfeat.batch(tmp_path, "curvy", "2%")
     assert main(["batch", str(tmp_path / "nothing.obj"), "--out", str(tmp_path)]) == 2
+    assert "no such file or folder" in capsys.readouterr().err
     assert main(["batch", str(tmp_path), "--workers", "0"]) == 2
-    assert "no such file" in capsys.readouterr().err
+    assert "workers must be a positive number" in capsys.readouterr().err

@@ -12,7 +12,7 @@ from __future__ import annotations
 import contextlib
 import os
 
-from ..errors import ClusterError, MissingDependencyError
+from ..errors import ClusterError, InvalidParameterError, MissingDependencyError
 
 INSTALL_HINT = "pip install 'uvfeat[batch]'"
 
@@ -31,12 +31,19 @@ def engine_threads(workers: int) -> int:
     return max(1, (os.cpu_count() or 1) // workers)
 
 
+def check_workers(workers: int | None) -> int:
+    """The local worker count: ``workers``, or one per core."""
+    if workers is None:
+        return os.cpu_count() or 1
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise InvalidParameterError(f"workers must be a positive number of worker processes, got {workers!r}")
+    return workers
+
+
 def local_cluster(workers: int | None = None, dashboard_address: str | None = "127.0.0.1:8787"):
     """A ``LocalCluster`` of ``workers`` processes (default: one per core) with one thread each,
     on the loopback interface."""
-    workers = workers or os.cpu_count() or 1
-    if workers < 1:
-        raise ClusterError(f"a local cluster needs at least one worker, got {workers}")
+    workers = check_workers(workers)
     return distributed().LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
                                       dashboard_address=dashboard_address,
                                       env={"RAYON_NUM_THREADS": str(engine_threads(workers))})

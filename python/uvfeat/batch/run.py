@@ -10,7 +10,7 @@ import os
 
 from ..errors import InvalidParameterError
 from ..feature_files import FeatureJob
-from .cluster import dask_client, run_tasks
+from .cluster import check_workers, dask_client, run_tasks
 from .inputs import discover, output_folders
 from .table import write_run_table
 from .task import failed_row, finished_summary, mesh_task, source_record, summary_row
@@ -58,6 +58,8 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
     if unknown:
         raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(JOB_OPTIONS)}")
     job = FeatureJob(features=features, radii=radius, pictures=pictures, **options)
+    if client is None and scheduler is None:
+        check_workers(workers)
     meshes, out = discover(paths), os.path.abspath(out)  # workers may run in another folder
     folders = {p: os.path.join(out, f) for p, f in output_folders(meshes).items()}
     rows, pending = {}, []

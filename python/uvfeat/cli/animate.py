@@ -46,8 +46,6 @@ def run(args) -> int:
     out, started = console(), time.perf_counter()
     if "," in args.radius:
         raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
-    if args.workers is not None and args.workers < 1:
-        raise InvalidParameterError(f"--workers must be at least 1, got {args.workers}")
     options = dict(frames=args.frames, fps=args.fps, animation=args.animation, resolution=args.resolution, uv=args.uv,
                    samples=args.samples, compute_resolution=args.compute_resolution, seed=args.seed,
                    method=args.method, sampling=args.sampling)

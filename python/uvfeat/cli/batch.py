@@ -5,7 +5,6 @@ from __future__ import annotations
 import contextlib
 import time
 
-from ..errors import InvalidParameterError
 from ..feature_files import FeatureJob
 from .common import (
     add_cluster_options,
@@ -36,8 +35,6 @@ def add_command(commands) -> None:
 def run(args) -> int:
     from ..batch import batch
 
-    if args.workers is not None and args.workers < 1:
-        raise InvalidParameterError(f"--workers must be at least 1, got {args.workers}")
     out, started = console(), time.perf_counter()
     options = {k: v for k, v in FeatureJob.from_args(args).settings().items() if k not in ("features", "radii")}
     counts = {"computed": 0, "skipped": 0, "failed": 0}
