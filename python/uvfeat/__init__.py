@@ -11,6 +11,7 @@ Quick start::
     values = uvfeat.compute(mesh, "gaussian_curvature", radius=0.05)   # one shot, per vertex
     for frame in uvfeat.animate("fox.glb", "mean_curvature", "2%", fps=24):   # per animation frame
         frame.time, frame["mean_curvature"]
+    table = uvfeat.batch(["scans/", "*.ply"], "mean_curvature", "2%", out="runs/")   # many meshes, on Dask
     ref = uvfeat.reference.compute(mesh, "gaussian_curvature", radius=0.05)  # object-space reference
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
@@ -21,14 +22,17 @@ from . import compare, errors, examples, options, reference, shapes
 from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
+from .batch import batch
 from .compute import compute
 from .converged import ConvergedReference, converged_reference
 from .errors import (
     AnimationError,
+    ClusterError,
     InvalidMeshError,
     InvalidParameterError,
     MeshFileError,
     MeshWarning,
+    MissingDependencyError,
     ResolutionTooLargeError,
     UvfeatError,
     UVError,
@@ -44,6 +48,7 @@ __all__ = [
     "AnimationError",
     "AnimationFrame",
     "Atlas",
+    "ClusterError",
     "FEATURES",
     "FeatureMap",
     "GltfAnimation",
@@ -57,6 +62,7 @@ __all__ = [
     "Mesh",
     "MeshFileError",
     "MeshWarning",
+    "MissingDependencyError",
     "ResolutionTooLargeError",
     "SUPPORTED_FORMATS",
     "SeamCrossing",
@@ -65,6 +71,7 @@ __all__ = [
     "UvfeatError",
     "__version__",
     "animate",
+    "batch",
     "compare",
     "errors",
     "examples",

@@ -40,3 +40,11 @@ class MeshWarning(UserWarning):
 class AnimationError(UvfeatError, ValueError):
     """An animation cannot be used: none in the file, unknown name, frames whose vertex count or
     connectivity disagrees with the mesh, inconsistent keyframe data."""
+
+
+class MissingDependencyError(UvfeatError, ImportError):
+    """An optional dependency is not installed; the message names the ``pip install`` that adds it."""
+
+
+class ClusterError(UvfeatError, OSError):
+    """The Dask cluster cannot be reached or started."""

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import os
 import time
-import warnings
 
 import numpy as np
 
@@ -14,7 +13,7 @@ from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
 from ..options import ARGUMENT_DEFAULTS
 from ..writers import write_json
-from .common import add_atlas_options, add_feature_options, console
+from .common import add_atlas_options, add_cluster_options, add_feature_options, console, print_dashboard, throughput
 
 
 def add_command(commands) -> None:
@@ -35,60 +34,40 @@ def add_command(commands) -> None:
     add_feature_options(parser)
     parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
     parser.add_argument("--seed", type=int, default=ARGUMENT_DEFAULTS["seed"], help="sample-pattern seed, the same for every frame")
+    add_cluster_options(parser)
+    parser.add_argument("--frames-per-task", type=int, metavar="N", help="with --scheduler/--workers: frames per "
+                        "task, each building the atlas once (default: two tasks per worker thread)")
     parser.set_defaults(handler=run)
 
 
-def _frames_argument(frames: list[str] | None):
-    if frames and len(frames) == 1 and frames[0].endswith(".npy"):
-        return np.load(frames[0])
-    return frames
-
-
-def _progress(out):
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
-
-    return Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                    TextColumn("{task.fields[rate]:.2f} frames/s"), TimeElapsedColumn(), TimeRemainingColumn(),
-                    console=out, transient=True, disable=not out.is_terminal)
-
-
 def run(args) -> int:
-    from PIL import Image
-
-    from ..animation.animate import animate
-    from ..images import colour_range, feature_picture, save_gif
+    from ..animation.frame_files import open_animation, write_frames, write_pictures
 
     out, started = console(), time.perf_counter()
     if "," in args.radius:
         raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        frames = animate(args.mesh, args.feature, args.radius, frames=_frames_argument(args.frames), fps=args.fps,
-                         animation=args.animation, resolution=args.resolution, uv=args.uv, samples=args.samples,
-                         compute_resolution=args.compute_resolution, seed=args.seed,
-                         method=args.method, sampling=args.sampling)
-    notes = sorted({str(w.message) for w in caught}) + frames.atlas.warnings()
+    options = dict(frames=args.frames, fps=args.fps, animation=args.animation, resolution=args.resolution, uv=args.uv,
+                   samples=args.samples, compute_resolution=args.compute_resolution, seed=args.seed,
+                   method=args.method, sampling=args.sampling)
+    frames, notes = open_animation(args.mesh, args.feature, args.radius, **options)
+    notes += frames.atlas.warnings()
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
+    with throughput(out, f"{frames.mesh.name}: {', '.join(frames.features)}", total, "frames/s") as advance:
+        if args.scheduler or args.workers:
+            from ..batch.frames import animate_on_cluster
+
+            # Workers may run elsewhere, in another folder: they get absolute paths
+            options["frames"] = [os.path.abspath(f) for f in args.frames] if args.frames else None
+            per_frame, task_notes = animate_on_cluster(
+                os.path.abspath(args.mesh), frames.features, args.radius, options, os.path.abspath(args.out), total,
+                scheduler=args.scheduler,
+                workers=args.workers, frames_per_task=args.frames_per_task,
+                on_start=lambda client: print_dashboard(out, client), on_frames=advance)
+            notes = sorted(set(notes) | set(task_notes))
+        else:
+            per_frame = write_frames(frames, args.out, 0, total, on_frame=lambda frame: advance())
     os.makedirs(args.out, exist_ok=True)
-    ranges, pictures, per_frame = {}, {name: [] for name in frames.features}, []
-    with _progress(out) as progress:
-        task = progress.add_task(f"{frames.mesh.name}: {', '.join(frames.features)}", total=total, rate=0.0)
-        playing = time.perf_counter()
-        for frame in (frames.frame(k) for k in range(total)):
-            np.savez_compressed(os.path.join(args.out, f"frame_{frame.index:04d}.npz"), time=frame.time,
-                                positions=frame.positions, **frame.values)
-            for name, feature in frame.maps.items():
-                if name not in ranges:  # the first frame fixes the colours, so frames compare
-                    ranges[name] = colour_range(name, feature.texture)[1:]
-                np.save(os.path.join(args.out, f"{name}_{frame.index:04d}.npy"), feature.texture)
-                picture = feature_picture(name, feature.texture, *ranges[name])
-                Image.fromarray(picture).save(os.path.join(args.out, f"{name}_{frame.index:04d}.png"))
-                pictures[name].append(picture)
-            per_frame.append(dict(index=frame.index, time=frame.time, **frame.timings))
-            progress.update(task, advance=1, rate=(frame.index + 1) / (time.perf_counter() - playing))
-    for name, frame_pictures in pictures.items():
-        if frame_pictures:
-            save_gif(os.path.join(args.out, f"{name}.gif"), frame_pictures, args.fps)
+    ranges = write_pictures(args.out, frames.features, total, args.fps)
     mean_ms = {key: float(np.mean([f[key] for f in per_frame])) for key in per_frame[0] if key.endswith("_ms")} \
         if per_frame else {}
     summary = {

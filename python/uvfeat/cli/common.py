@@ -6,7 +6,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import time
-import warnings
 
 from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, FEATURES
 
@@ -35,14 +34,32 @@ def steps(out, total: int):
         yield advance
 
 
+@contextlib.contextmanager
+def throughput(out, description: str, total: int, unit: str, per_seconds: float = 1.0):
+    """A progress bar over ``total`` items that shows how many are done per ``per_seconds``
+    (``unit`` names that rate); yields ``advance(n=1)``."""
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    progress = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                        TextColumn("{task.fields[rate]:.2f} " + unit), TimeElapsedColumn(), TimeRemainingColumn(),
+                        console=out, transient=True, disable=not out.is_terminal)
+    with progress:
+        task = progress.add_task(description, total=total, rate=0.0)
+        started = time.perf_counter()
+
+        def advance(n: int = 1):
+            progress.advance(task, n)
+            done = progress.tasks[0].completed
+            progress.update(task, rate=done * per_seconds / max(time.perf_counter() - started, 1e-9))
+
+        yield advance
+
+
 def load_mesh(path: str, args):
     """The mesh at ``path`` loaded with the command's UV options, and its warnings as notes."""
-    from ..io import load
+    from ..feature_files import load_with_notes
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        mesh = load(path, uv=args.uv, resolution=args.resolution, normalize_uv=not args.strict_uv)
-    return mesh, [str(w.message) for w in caught]
+    return load_with_notes(path, args.uv, args.resolution, args.strict_uv)
 
 
 def on_file(writer):
@@ -55,11 +72,6 @@ def on_file(writer):
         return 0
 
     return command
-
-
-def radius_tag(radius) -> str:
-    """A radius as written in file names: ``2%`` -> ``2pct``, ``0.05`` -> ``0p05``."""
-    return str(radius).strip().replace("%", "pct").replace(".", "p")
 
 
 def print_notes_and_outputs(out, notes: list[str], written: str, folder: str) -> None:
@@ -95,6 +107,11 @@ def add_feature_options(parser: argparse.ArgumentParser) -> None:
 def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:
     """Arguments shared by the commands that compute features on a mesh file."""
     parser.add_argument("mesh", help=MESH_HELP)
+    add_feature_selection(parser, radius_note)
+
+
+def add_feature_selection(parser: argparse.ArgumentParser, radius_note: str) -> None:
+    """What to compute on each mesh and how: features, radii, buffers, sampling, UVs, seed, query."""
     parser.add_argument("--feature", default="mean_curvature",
                         help="comma-separated names, or 'all' (" + ", ".join(FEATURES) + ")")
     parser.add_argument("--radius", default="2%", help="radius in object units or %% of the bounding-box diagonal"
@@ -105,3 +122,26 @@ def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: st
     parser.add_argument("--seed", type=int, default=ARGUMENT_DEFAULTS["seed"], help="seed of the sample pattern")
     parser.add_argument("--query", choices=CHOICES["query"], default=DEFAULT_OPTIONS["query"],
                         help="per-vertex query (default %(default)s)")
+
+
+def add_computation_options(parser: argparse.ArgumentParser) -> None:
+    """The options of ``uvfeat compute`` beyond the feature selection (``uvfeat batch`` takes them too)."""
+    parser.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (DESIGN.md §1.8)")
+    parser.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
+    parser.add_argument("--directions", choices=("d1", "d2"), default=None,
+                        help="draw this principal direction (d1 of k1, d2 of k2) as segments on the map pictures; "
+                        "needs --method fit")
+    parser.add_argument("--standard-error", action="store_true", help="also compute Monte Carlo standard errors")
+
+
+def add_cluster_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--scheduler", metavar="ADDRESS", help="run on the Dask cluster of this scheduler "
+                        "(tcp://host:8786); its workers must see the input and output folders")
+    parser.add_argument("--workers", type=int, metavar="N", help="run on a local Dask cluster of N worker processes "
+                        "(one thread each; default: one per core)")
+
+
+def print_dashboard(out, client) -> None:
+    """The address of the Dask dashboard, where the cluster's tasks, memory and workers are shown."""
+    if client is not None:
+        out.print(f"Dask dashboard: {client.dashboard_link} ({len(client.nthreads())} workers)")

@@ -1,0 +1,71 @@
+"""Files ``uvfeat animate`` writes: per frame ``frame_NNNN.npz`` (time, positions, per-vertex
+features) and ``FEATURE_NNNN.npy`` maps, written by whichever process computes the frame; then,
+once every frame is on disk, the pictures (``FEATURE_NNNN.png``, ``FEATURE.gif``) in one colour
+range taken from the first frame, so frames computed apart still compare."""
+
+from __future__ import annotations
+
+import os
+import warnings
+
+import numpy as np
+
+from .animate import Animation, animate
+
+
+def open_animation(mesh: str, features, radius, frames: list[str] | None = None, **options):
+    """:func:`uvfeat.animate` on the command line's arguments (``frames``: one ``.npy`` array or
+    mesh files), and the warnings it gave as notes."""
+    if frames and len(frames) == 1 and frames[0].endswith(".npy"):
+        frames = np.load(frames[0])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        animation = animate(mesh, features, radius, frames=frames, **options)
+    return animation, sorted({str(w.message) for w in caught})
+
+
+def map_path(out: str, name: str, index: int, extension: str) -> str:
+    return os.path.join(out, f"{name}_{index:04d}.{extension}")
+
+
+def write_frames(animation: Animation, out: str, start: int, stop: int, on_frame=lambda frame: None) -> list[dict]:
+    """Computes frames ``start`` to ``stop - 1`` and writes their files; returns each frame's
+    index, time and timings."""
+    os.makedirs(out, exist_ok=True)
+    rows = []
+    for frame in (animation.frame(k) for k in range(start, stop)):
+        np.savez_compressed(os.path.join(out, f"frame_{frame.index:04d}.npz"), time=frame.time,
+                            positions=frame.positions, **frame.values)
+        for name, feature in frame.maps.items():
+            np.save(map_path(out, name, frame.index, "npy"), feature.texture)
+        rows.append(dict(index=frame.index, time=frame.time, **frame.timings))
+        on_frame(frame)
+    return rows
+
+
+def animate_frames(mesh: str, features, radius, options: dict, out: str, start: int, stop: int) -> dict:
+    """One task of an animation on a cluster: the atlas built once, then frames ``start`` to
+    ``stop - 1`` written; returns their rows and the notes."""
+    animation, notes = open_animation(mesh, features, radius, **options)
+    return {"frames": write_frames(animation, out, start, stop), "notes": notes + animation.atlas.warnings()}
+
+
+def write_pictures(out: str, features: list[str], n_frames: int, fps: float) -> dict[str, list[float]]:
+    """``FEATURE_NNNN.png`` and ``FEATURE.gif`` from the written maps; returns each feature's
+    colour range (that of the first frame)."""
+    from PIL import Image
+
+    from ..images import colour_range, feature_picture, save_gif
+
+    ranges = {}
+    for name in features:
+        pictures = []
+        for k in range(n_frames):
+            texture = np.load(map_path(out, name, k, "npy"))
+            if name not in ranges:
+                ranges[name] = list(colour_range(name, texture)[1:])
+            pictures.append(feature_picture(name, texture, *ranges[name]))
+            Image.fromarray(pictures[-1]).save(map_path(out, name, k, "png"))
+        if pictures:
+            save_gif(os.path.join(out, f"{name}.gif"), pictures, fps)
+    return ranges

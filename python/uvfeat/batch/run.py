@@ -1,0 +1,94 @@
+"""``uvfeat.batch``: what ``uvfeat compute`` writes, for many meshes, one Dask task per mesh;
+finished meshes are skipped, so an interrupted run resumes, and a failed mesh is a row of the
+run table rather than the end of the run."""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import os
+
+from ..errors import InvalidParameterError
+from ..feature_files import FeatureJob
+from .cluster import check_workers, dask_client, run_tasks
+from .inputs import discover, output_folders
+from .table import write_run_table
+from .task import failed_row, finished_summary, mesh_task, source_record, summary_row
+
+JOB_OPTIONS = tuple(f.name for f in dataclasses.fields(FeatureJob) if f.name not in ("features", "radii", "pictures"))
+
+
+def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch", scheduler: str | None = None,
+          workers: int | None = None, force: bool = False, pictures: bool = False, on_start=None, on_row=None,
+          **options):
+    """Features of many meshes on a Dask cluster, with the files of ``uvfeat compute`` per mesh.
+
+    Parameters
+    ----------
+    paths : str or list
+        Mesh files, folders (searched recursively for mesh files) and glob patterns.
+    features, radius
+        As for ``uvfeat compute``: names (or "all"), one radius or several (a list or "1%,4%").
+    client : distributed.Client, optional
+        Run on this client's cluster. Otherwise on the scheduler at ``scheduler``, else on a new
+        ``LocalCluster`` of ``workers`` processes (default one per core), closed at the end.
+    out : str
+        The run's folder: one sub-folder per mesh (named after its path) and ``batch.parquet``,
+        ``batch.csv``.
+    force : bool
+        Recompute meshes an earlier run finished with the same settings (they are skipped otherwise).
+    pictures : bool
+        Also write the ``.png`` map pictures.
+    on_start : callable, optional
+        ``on_start(n_meshes, client)`` before the first row (``client`` is None when every mesh
+        is already finished).
+    on_row : callable, optional
+        ``on_row(row)`` as each mesh is finished, skipped or failed.
+    **options
+        ``samples``, ``resolution``, ``compute_resolution``, ``adaptive``, ``paper_mode``, ``seed``,
+        ``query``, ``method``, ``sampling``, ``standard_error``, ``directions``, ``uv``, ``strict_uv``.
+
+    Returns
+    -------
+    pyarrow.Table
+        The run table, a row per mesh in input order: ``status`` is ``computed``, ``skipped``
+        (finished by an earlier run) or ``failed`` (``error`` says why).
+    """
+    unknown = sorted(set(options) - set(JOB_OPTIONS))
+    if unknown:
+        raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(JOB_OPTIONS)}")
+    job = FeatureJob(features=features, radii=radius, pictures=pictures, **options)
+    if client is None and scheduler is None:
+        check_workers(workers)
+    meshes, out = discover(paths), os.path.abspath(out)  # workers may run in another folder
+    folders = {p: os.path.join(out, f) for p, f in output_folders(meshes).items()}
+    rows, pending = {}, []
+    for path in meshes:
+        source = source_record(path)
+        summary = None if force else finished_summary(folders[path], job, source)
+        if summary is None:
+            pending.append((path, folders[path], job, source))
+        else:
+            rows[path] = summary_row(path, folders[path], summary, "skipped")
+    report = on_row or (lambda row: None)
+    # No cluster is started when every mesh is finished already
+    cluster = dask_client(client, scheduler, workers) if pending else contextlib.nullcontext()
+    try:
+        with cluster as running:
+            if on_start:
+                on_start(len(meshes), running)
+            for row in rows.values():
+                report(row)
+            if running is not None:
+                for index, row in run_tasks(running, mesh_task, pending, _lost):
+                    rows[pending[index][0]] = row
+                    report(row)
+    finally:
+        table = write_run_table([rows[p] for p in meshes if p in rows], out)
+    return table
+
+
+def _lost(call: tuple, error: BaseException) -> dict:
+    path, folder = call[:2]
+    return failed_row(path, folder, f"the workers computing it died ({type(error).__name__}: {error}); "
+                      "too large for a worker's memory?")

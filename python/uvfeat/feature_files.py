@@ -1,0 +1,145 @@
+"""What ``uvfeat compute`` writes for one mesh, shared with ``uvfeat batch``: per-vertex values
+(``.ply``, ``.npz``), feature maps (``.npy``, optionally ``.png``) and ``summary.json`` with the
+settings, which a later batch run compares to decide whether the mesh is finished."""
+
+from __future__ import annotations
+
+import os
+import time
+import warnings
+from dataclasses import asdict, dataclass, field
+
+from ._core import __version__
+from .errors import InvalidParameterError
+from .options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, feature_names
+from .writers import write_json, write_per_vertex
+
+SUMMARY = "summary.json"
+
+
+def radius_tag(radius) -> str:
+    """A radius as written in file names: ``2%`` -> ``2pct``, ``0.05`` -> ``0p05``."""
+    return str(radius).strip().replace("%", "pct").replace(".", "p")
+
+
+def radius_list(radius) -> list[str]:
+    """Radii as the command line writes them: ``"1%,4%"``, ``0.05`` or a list -> ``["1%", "4%"]``."""
+    items = radius.split(",") if isinstance(radius, str) else radius if isinstance(radius, (list, tuple)) else [radius]
+    radii = [str(r).strip() for r in items if str(r).strip()]
+    if not radii:
+        raise InvalidParameterError(f"no radius in {radius!r}")
+    return radii
+
+
+@dataclass(frozen=True)
+class FeatureJob:
+    """Everything that decides the files of one mesh: what to compute, how, and what to write."""
+
+    features: tuple[str, ...]
+    radii: tuple[str, ...]
+    samples: int = ARGUMENT_DEFAULTS["samples"]
+    resolution: int = 1024
+    compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"]
+    adaptive: bool = False
+    paper_mode: bool = False
+    seed: int = ARGUMENT_DEFAULTS["seed"]
+    query: str = DEFAULT_OPTIONS["query"]
+    method: str = DEFAULT_OPTIONS["method"]
+    sampling: str = DEFAULT_OPTIONS["sampling"]
+    standard_error: bool = False
+    directions: str | None = None
+    uv: str = "auto"
+    strict_uv: bool = False
+    pictures: bool = field(default=True, compare=False)
+
+    def __post_init__(self):
+        object.__setattr__(self, "features", tuple(feature_names(self.features)))
+        object.__setattr__(self, "radii", tuple(radius_list(self.radii)))
+        if self.directions and self.method != "fit":
+            raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
+
+    @classmethod
+    def from_args(cls, args, pictures: bool = True) -> FeatureJob:
+        """The job of a command's parsed arguments (``--feature``, ``--radius``, ``--samples`` ...)."""
+        return cls(features=args.feature, radii=args.radius, samples=args.samples, resolution=args.resolution,
+                   compute_resolution=args.compute_resolution, adaptive=args.adaptive, paper_mode=args.paper_mode,
+                   seed=args.seed, query=args.query, method=args.method, sampling=args.sampling,
+                   standard_error=args.standard_error, directions=args.directions, uv=args.uv,
+                   strict_uv=args.strict_uv, pictures=pictures)
+
+    def settings(self) -> dict:
+        """The settings recorded in ``summary.json``: equal settings give equal files."""
+        recorded = asdict(self)
+        del recorded["pictures"]
+        recorded["features"], recorded["radii"] = list(self.features), list(self.radii)
+        return recorded
+
+
+def load_with_notes(path: str, uv: str, resolution: int, strict_uv: bool):
+    """The mesh at ``path`` loaded with these UV options, and its warnings as notes."""
+    from .io import load
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mesh = load(path, uv=uv, resolution=resolution, normalize_uv=not strict_uv)
+    return mesh, [str(w.message) for w in caught]
+
+
+def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], started: float,
+                        advance=lambda description, done=True: None, source: dict | None = None):
+    """Computes the job's features on ``mesh`` and writes its files to ``out``; ``advance``
+    reports each step. ``summary.json`` is written last, and atomically, so its presence means
+    the other files are complete. Returns the atlas and the summary."""
+    import numpy as np
+
+    from .atlas import Atlas
+    from .images import save_feature_figure
+
+    os.makedirs(out, exist_ok=True)
+    options = {"query": job.query, "standard_error": job.standard_error, "method": job.method,
+               "sampling": job.sampling}
+    summary = {"uvfeat": __version__, "mesh": mesh.name, "source": source or {}, "warnings": list(load_notes),
+               "radii": {}, "settings": job.settings(),
+               "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
+    advance("pre-processing + rasterising", done=False)
+    atlas = Atlas(mesh, resolution=job.resolution, precision="f16" if job.paper_mode else "f32")
+    summary["diagnostics"] = atlas.diagnostics
+    summary["warnings"] += atlas.warnings()
+    timings = dict(atlas.timings)
+    advance("buffers ready")
+    for radius in job.radii:
+        advance(f"features at r = {radius}", done=False)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            maps = atlas.compute(list(job.features), radius, samples=job.samples,
+                                 compute_resolution=job.compute_resolution, adaptive=job.adaptive, seed=job.seed,
+                                 paper_mode=job.paper_mode, **options)
+        summary["warnings"] += sorted({str(w.message) for w in caught})
+        first = next(iter(maps.values()))
+        advance(f"per-vertex values at r = {radius}")
+        started_pv = time.perf_counter()
+        per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+        tag = radius_tag(radius)
+        directions = first.per_vertex_directions() if job.method == "fit" else None
+        write_per_vertex(out, tag, mesh, first.radius, per_vertex, directions)
+        time_pv = time.perf_counter() - started_pv
+        advance(f"maps at r = {radius}")
+        line_field = first.uv_principal_directions()[:, :, ["d1", "d2"].index(job.directions)] \
+            if job.directions and job.pictures else None
+        for n, m in maps.items():
+            np.save(os.path.join(out, f"{n}_r{tag}.npy"), m.texture)
+            if job.pictures:
+                save_feature_figure(os.path.join(out, f"{n}_r{tag}.png"), n, m.texture, m.radius, mesh.name,
+                                    line_field=line_field)
+        summary["radii"][radius] = {
+            "radius": first.radius,
+            "features_s": first.settings["features_s"][0],
+            "per_vertex_s": time_pv,
+            "diagnostics": first.summary,
+            "per_vertex_range": {n: [float(np.nanmin(v)), float(np.nanmax(v))] for n, v in per_vertex.items()},
+        }
+    summary["timings_s"] = dict(timings, total=time.perf_counter() - started)
+    finished = os.path.join(out, SUMMARY)
+    write_json(finished + ".partial", summary)
+    os.replace(finished + ".partial", finished)
+    return atlas, summary
