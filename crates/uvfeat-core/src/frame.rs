@@ -33,6 +33,7 @@ pub struct FaceMap {
 }
 
 impl FaceMap {
+    #[inline]
     fn new(x: [DVec3; 3], n: [DVec3; 3], uv: [DVec2; 3]) -> Option<Self> {
         let inv = DMat2::from_cols(uv[1] - uv[0], uv[2] - uv[0]);
         if inv.determinant() == 0.0 {
@@ -120,8 +121,6 @@ pub struct Frame {
     pub corner_metrics: Vec<[f64; 3]>,
     /// (n_sides) transition map of each boundary side; `None` where nothing is across.
     pub seam_maps: Vec<Option<SeamMap>>,
-    /// (n_faces) affine position and normal maps; `None` for a degenerate UV triangle.
-    pub face_maps: Vec<Option<FaceMap>>,
 }
 
 impl Frame {
@@ -137,7 +136,6 @@ impl Frame {
             distortion: vec![ZERO_DISTORTION; n_faces],
             corner_metrics: Vec::new(),
             seam_maps: Vec::new(),
-            face_maps: vec![None; n_faces],
         };
         frame.refresh(topology, input_positions)?;
         Ok(frame)
@@ -150,25 +148,36 @@ impl Frame {
     /// # Errors
     /// As [`Frame::new`].
     pub fn refresh(&mut self, topology: &Topology, input_positions: &[DVec3]) -> Result<()> {
-        let positions = topology.geometric_positions(input_positions)?;
-        let normals = vertex_normals(&positions, &topology.faces);
-        self.face_maps
+        self.positions = topology.geometric_positions(input_positions)?;
+        self.normals = vertex_normals(&self.positions, &topology.faces);
+        let face_metrics: Vec<Option<[f64; 3]>> = (0..topology.faces.len())
+            .into_par_iter()
+            .map(|face| self.face_map(topology, face as u32).map(|map| map.jacobian.metric()))
+            .collect();
+        self.distortion
             .par_iter_mut()
-            .zip(self.distortion.par_iter_mut())
-            .zip(topology.faces.par_iter().zip(&topology.corner_uvs).zip(&topology.face_chart))
-            .for_each(|((map, distortion), ((tri, uv), &chart))| {
-                let gather = |values: &[DVec3]| tri.map(|v| values[v as usize]);
-                *map = (chart >= 0).then(|| FaceMap::new(gather(&positions), gather(&normals), *uv)).flatten();
-                *distortion = map.map_or(ZERO_DISTORTION, |m| Distortion::from_metric(m.jacobian.metric()));
-            });
-        let face_maps = &self.face_maps;
-        self.corner_metrics = corner_metrics(topology, |f| face_maps[f].map(|m| m.jacobian.metric()));
+            .zip(&face_metrics)
+            .for_each(|(distortion, metric)| *distortion = metric.map_or(ZERO_DISTORTION, Distortion::from_metric));
+        self.corner_metrics = corner_metrics(topology, |f| face_metrics[f]);
         let metrics = &self.corner_metrics;
         self.seam_maps =
             seam_maps(topology, |face, corner| metrics[topology.corner_groups[face as usize][corner] as usize]);
-        self.positions = positions;
-        self.normals = normals;
         Ok(())
+    }
+
+    /// The affine position and normal maps of `face` for this frame; `None` for a face outside
+    /// every chart or with a degenerate UV triangle. Built on demand from the vertices rather than
+    /// stored: a stored map takes 344 bytes per face (a third of a GiB for a million faces),
+    /// about as many bytes to load as the corners it is built from.
+    #[inline]
+    pub fn face_map(&self, topology: &Topology, face: u32) -> Option<FaceMap> {
+        let face = face as usize;
+        if topology.face_chart[face] < 0 {
+            return None;
+        }
+        let corners = topology.faces[face];
+        let gather = |values: &[DVec3]| corners.map(|v| values[v as usize]);
+        FaceMap::new(gather(&self.positions), gather(&self.normals), topology.corner_uvs[face])
     }
 
     /// The sampler's metric at `uv` in `face`: the face's own metric, unless it is far more
@@ -177,7 +186,7 @@ impl Frame {
     /// parameterisations sample exactly as DESIGN.md §1.4 says. Zero for a face without a
     /// parameterisation.
     pub fn sampling_distortion(&self, topology: &Topology, face: u32, uv: DVec2) -> Distortion {
-        let Some(map) = &self.face_maps[face as usize] else {
+        let Some(map) = self.face_map(topology, face) else {
             return ZERO_DISTORTION;
         };
         let own = self.distortion[face as usize];

@@ -117,7 +117,7 @@ pub fn surface_point(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<SurfacePoin
 /// `None` for a face with a degenerate UV triangle.
 #[inline]
 pub fn evaluate_face(atlas: &Atlas, face: u32, uv: DVec2) -> Option<SurfacePoint> {
-    let map = atlas.frame.face_maps[face as usize].as_ref()?;
+    let map = atlas.frame.face_map(&atlas.topology, face)?;
     Some(SurfacePoint {
         position: map.smooth_position(uv),
         normal: map.normal(uv),

@@ -104,8 +104,9 @@ impl FacePatches {
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(low, high), &p| (low.min(p), high.max(p)));
         let origin = if low.x <= high.x { 0.5 * (low + high) } else { DVec3::ZERO };
         self.origin = origin;
-        self.faces.par_iter_mut().zip(&frame.face_maps).zip(&topology.face_chart).for_each(|((patch, map), &chart)| {
-            *patch = map.as_ref().map_or(FacePatch::EMPTY, |map| FacePatch::new(map, chart, origin));
+        self.faces.par_iter_mut().zip(&topology.face_chart).enumerate().for_each(|(face, (patch, &chart))| {
+            let map = frame.face_map(topology, face as u32);
+            *patch = map.map_or(FacePatch::EMPTY, |map| FacePatch::new(&map, chart, origin));
         });
     }
 }
@@ -133,8 +134,8 @@ mod tests {
         let frame = Frame::new(&topology, &mesh.positions).unwrap();
         let patches = FacePatches::new(&topology, &frame);
         let mut worst: f64 = 0.0;
-        for (f, map) in frame.face_maps.iter().enumerate() {
-            let map = map.as_ref().unwrap();
+        for f in 0..topology.faces.len() {
+            let map = frame.face_map(&topology, f as u32).unwrap();
             let uv = topology.corner_uvs[f];
             for (b1, b2) in [(0.2, 0.3), (0.0, 0.0), (0.6, 0.5), (-0.1, 0.4)] {
                 let at = uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2;
