@@ -12,6 +12,7 @@ Quick start::
     for frame in uvfeat.animate("fox.glb", "mean_curvature", "2%", fps=24):   # per animation frame
         frame.time, frame["mean_curvature"]
     ref = uvfeat.reference.compute(mesh, "gaussian_curvature", radius=0.05)  # object-space reference
+    uvfeat.plot(mesh, maps["mean_curvature"], path="H.png")    # the mesh coloured by it, headless
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
@@ -36,6 +37,7 @@ from .errors import (
 )
 from .features import FeatureMap
 from .options import FEATURES
+from .surface_plot import plot
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 
@@ -70,6 +72,7 @@ __all__ = [
     "examples",
     "load",
     "options",
+    "plot",
     "reference",
     "shapes",
 ]

@@ -16,7 +16,8 @@ from .common import add_feature_command_options, on_file, print_notes_and_output
 def add_command(commands) -> None:
     parser = commands.add_parser("compute", help="compute features and write per-vertex values, maps and pictures",
                                  description="Writes per_vertex_r*.ply (vertex properties + colours) and .npz, "
-                                 "FEATURE_r*.npy and .png maps (v up), and summary.json.")
+                                 "FEATURE_r*.npy and .png maps (v up), FEATURE_3d.png (the mesh coloured by the "
+                                 "feature from three views, one column per radius) and summary.json.")
     add_feature_command_options(parser, "; comma-separated for several scales")
     parser.add_argument("--adaptive", action="store_true", help="two-stage adaptive sampling (DESIGN.md §1.8)")
     parser.add_argument("--paper-mode", action="store_true", help="the paper's choices, for reproduction")
@@ -34,6 +35,7 @@ def write_features(mesh, args, console, load_notes: list[str], started: float) -
     from ..atlas import Atlas
     from ..options import feature_names
     from ..images import save_feature_figure
+    from ..surface_plot import save_plot
 
     names = feature_names(args.feature)
     radii = [r.strip() for r in args.radius.split(",") if r.strip()]
@@ -47,7 +49,8 @@ def write_features(mesh, args, console, load_notes: list[str], started: float) -
                             "compute_resolution": args.compute_resolution, "adaptive": args.adaptive,
                             "paper_mode": args.paper_mode, "seed": args.seed, "query": args.query,
                             "method": args.method, "sampling": args.sampling}}
-    with steps(console, 1 + 3 * len(radii)) as advance:
+    on_mesh = {name: [] for name in names}
+    with steps(console, 2 + 3 * len(radii)) as advance:
         advance("pre-processing + rasterising", done=False)
         atlas = Atlas(mesh, resolution=args.resolution, precision="f16" if args.paper_mode else "f32")
         summary["diagnostics"] = atlas.diagnostics
@@ -65,6 +68,8 @@ def write_features(mesh, args, console, load_notes: list[str], started: float) -
             advance(f"per-vertex values at r = {radius}")
             started_pv = time.perf_counter()
             per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+            for name, values in per_vertex.items():
+                on_mesh[name].append(values)
             tag = radius_tag(radius)
             directions = first.per_vertex_directions() if args.method == "fit" else None
             write_per_vertex(args.out, tag, mesh, first.radius, per_vertex, directions)
@@ -83,6 +88,11 @@ def write_features(mesh, args, console, load_notes: list[str], started: float) -
                 "diagnostics": first.summary,
                 "per_vertex_range": {n: [float(np.nanmin(v)), float(np.nanmax(v))] for n, v in per_vertex.items()},
             }
+        advance("3D pictures")
+        started_3d = time.perf_counter()
+        for name, rows in on_mesh.items():
+            save_plot(os.path.join(args.out, f"{name}_3d.png"), mesh, np.stack(rows), feature=name, radius=radii)
+        timings["pictures_3d_s"] = time.perf_counter() - started_3d
         summary["timings_s"] = dict(timings, total=time.perf_counter() - started)
         write_json(os.path.join(args.out, "summary.json"), summary)
     console.print(atlas.summary())
@@ -91,6 +101,6 @@ def write_features(mesh, args, console, load_notes: list[str], started: float) -
         console.print(f"r = {radius} ({info['radius']:.4g}): {info['features_s']:.2f} s, "
                       f"{d['mean_valid_samples']:.0f} samples/texel, {100 * d['missing_fraction']:.2f} % missing, "
                       f"{d['truncated_texels']} texels truncated by mesh borders")
-    print_notes_and_outputs(console, summary["warnings"], "per-vertex .ply/.npz, maps .npy/.png and summary.json",
+    print_notes_and_outputs(console, summary["warnings"], "per-vertex .ply/.npz, maps .npy/.png, 3D pictures *_3d.png and summary.json",
                             args.out)
     return summary

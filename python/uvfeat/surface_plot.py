@@ -1,0 +1,110 @@
+"""``uvfeat.plot``: a feature on the mesh from a few standard views, one column per radius, with
+one colour range for all of them (so scales compare) and a colour bar in the feature's units."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+#: Standard views as (elevation, azimuth) in degrees around the up axis; azimuth 0 looks at the
+#: front of a model facing +z with y up (the OBJ and glTF convention), 90 at its +x side.
+VIEWS = {
+    "front": (10.0, 0.0),
+    "three_quarter": (20.0, 45.0),
+    "side": (10.0, 90.0),
+    "back": (10.0, 180.0),
+    "other_side": (10.0, -90.0),
+    "top": (90.0, 0.0),
+}
+
+DEFAULT_VIEWS = ("three_quarter", "side", "back")
+
+
+def resolve_view(view) -> tuple[float, float]:
+    """A view by name (see :data:`VIEWS`) or as ``(elevation, azimuth)`` in degrees."""
+    if isinstance(view, str):
+        if view not in VIEWS:
+            raise InvalidParameterError(f"unknown view {view!r}; use one of {sorted(VIEWS)} or (elevation, azimuth)")
+        return VIEWS[view]
+    try:
+        elevation, azimuth = (float(x) for x in view)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"a view is a name or (elevation, azimuth) in degrees, got {view!r}") from None
+    return elevation, azimuth
+
+
+def _values_and_labels(mesh, values, feature, radius):
+    """Per-vertex values as ``(n_radii, n_vertices)``, the feature name and one label per radius."""
+    from .features import FeatureMap
+
+    if isinstance(values, FeatureMap):
+        feature = feature or values.name
+        radius = values.radius if radius is None else radius
+        values = values.per_vertex()
+    values = np.asarray(values, dtype=np.float64)
+    rows = values[None] if values.ndim == 1 else values
+    if rows.ndim != 2 or rows.shape[1] != mesh.n_vertices:
+        raise InvalidParameterError(f"values must be per vertex, (n_vertices,) or (n_radii, n_vertices) with "
+                                    f"n_vertices = {mesh.n_vertices}, got shape {values.shape}")
+    radii = [None] * len(rows) if radius is None else list(np.atleast_1d(np.asarray(radius, dtype=object)))
+    if len(radii) != len(rows):
+        raise InvalidParameterError(f"{len(radii)} radii given for {len(rows)} rows of values")
+    labels = [None if r is None else f"r = {r}" if isinstance(r, str) else f"r = {float(r):.4g}" for r in radii]
+    return rows, feature or "value", labels
+
+
+def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT_VIEWS, up: str = "y",
+         low: float | None = None, high: float | None = None, panel_inches: float = 3.2, dpi: int = 120,
+         title: str | None = None, path: str | os.PathLike | None = None):
+    """Draws per-vertex ``values`` on ``mesh``, smooth-shaded, one row per view and one column per
+    radius, and returns the matplotlib Figure (also saved to ``path`` when given).
+
+    ``values`` is a :class:`~uvfeat.FeatureMap` (its name, radius and per-vertex values are used),
+    or an array ``(n_vertices,)`` or ``(n_radii, n_vertices)`` with ``feature`` naming it (for its
+    colour map and units) and ``radius`` giving the radius of each row (numbers, or labels such as
+    ``"4%"``). Signed features get a diverging map centred on 0; the range is a robust percentile
+    range over all radii unless ``low``/``high`` are given. ``views`` are names of :data:`VIEWS`
+    or ``(elevation, azimuth)`` pairs, ``up`` the axis that points up. Runs without a display."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .images import FEATURE_UNITS, colour_range
+    from .render import UP_AXES, draw_vertex_values
+
+    if up not in UP_AXES:
+        raise InvalidParameterError(f"up must be one of {sorted(UP_AXES)}, got {up!r}")
+    rows, feature, labels = _values_and_labels(mesh, values, feature, radius)
+    angles = [resolve_view(v) for v in ([views] if isinstance(views, str) else views)]
+    if not angles:
+        raise InvalidParameterError("plot needs at least one view")
+    cmap, robust_low, robust_high = colour_range(feature, rows.ravel())
+    low = robust_low if low is None else float(low)
+    high = robust_high if high is None else float(high)
+    fig, axes = plt.subplots(len(angles), len(rows), figsize=(panel_inches * len(rows) + 1.0,
+                                                               panel_inches * len(angles) + 0.5),
+                             dpi=dpi, squeeze=False)
+    # The colour bar first: it takes its room from the panels, which then render at their final size.
+    fig.colorbar(matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(low, high), cmap), ax=axes.ravel().tolist(),
+                 fraction=0.04, pad=0.03, label=FEATURE_UNITS.get(feature, ""))
+    for column, (row_values, label) in enumerate(zip(rows, labels)):
+        for line, angles_of_view in enumerate(angles):
+            draw_vertex_values(axes[line, column], mesh.positions, mesh.faces, row_values, cmap, low, high,
+                               view=angles_of_view, up=up)
+            if line == 0 and label:
+                axes[line, column].set_title(label)
+    fig.suptitle(title if title is not None else f"{mesh.name}: {feature}")
+    if path is not None:
+        fig.savefig(os.fspath(path), bbox_inches="tight")
+    return fig
+
+
+def save_plot(path: str | os.PathLike, mesh, values, **options) -> None:
+    """:func:`plot` written to ``path`` and closed (for writing many pictures in a row)."""
+    import matplotlib.pyplot as plt
+
+    plt.close(plot(mesh, values, path=path, **options))
