@@ -40,3 +40,8 @@ class MeshWarning(UserWarning):
 class AnimationError(UvfeatError, ValueError):
     """An animation cannot be used: none in the file, unknown name, frames whose vertex count or
     connectivity disagrees with the mesh, inconsistent keyframe data."""
+
+
+class MissingDependencyError(UvfeatError, ImportError):
+    """An optional dependency is not installed; the message names the ``pip install uvfeat[...]``
+    extra that brings it."""

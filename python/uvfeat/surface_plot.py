@@ -4,6 +4,7 @@ one colour range for all of them (so scales compare) and a colour bar in the fea
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -108,3 +109,41 @@ def save_plot(path: str | os.PathLike, mesh, values, **options) -> None:
     import matplotlib.pyplot as plt
 
     plt.close(plot(mesh, values, path=path, **options))
+
+
+@dataclass
+class FixedCamera:
+    """A view framed once, on the first frame of an animation, so that the mesh moves inside a
+    still picture: the point the view turns around, the picture's bounds in view coordinates and
+    its scale. Build it with :meth:`framing`."""
+
+    view: tuple[float, float]
+    up: str
+    centre: np.ndarray
+    bounds: tuple[np.ndarray, np.ndarray]
+    pixels_per_unit: float
+
+    @classmethod
+    def framing(cls, positions: np.ndarray, view="three_quarter", up: str = "y", pixels: int = 480,
+                margin: float = 0.25) -> "FixedCamera":
+        """Frames ``positions`` with ``margin`` (a fraction of their extent) of room to move on
+        every side, the longer side of the picture ``pixels`` wide."""
+        from .render import view_coordinates
+
+        angles = resolve_view(view)
+        centre = positions.mean(axis=0)
+        p = view_coordinates(positions, angles, up, centre)[:, :2]
+        lower, upper = p.min(axis=0), p.max(axis=0)
+        room = margin * float((upper - lower).max())
+        lower, upper = lower - room, upper + room
+        return cls(angles, up, centre, (lower, upper), pixels / float((upper - lower).max()))
+
+    def picture(self, positions: np.ndarray, faces: np.ndarray, values: np.ndarray, cmap: str, low: float,
+                high: float) -> np.ndarray:
+        """(H, W, 3) uint8 picture of the mesh at ``positions`` coloured by ``values``, on white."""
+        from .render import render_values
+
+        rgba = render_values(positions, faces, values, cmap, low, high, self.view, self.up, self.pixels_per_unit,
+                             self.bounds, self.centre)
+        rgb = rgba[..., :3] * rgba[..., 3:] + (1.0 - rgba[..., 3:])
+        return (np.clip(rgb, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)
