@@ -31,7 +31,7 @@ def test_a_stack_is_one_column_per_radius_and_one_row_per_view():
     assert len(panels) == 4
     assert [ax.get_title() for ax in panels if ax.get_title()] == ["r = 1%", "r = 0.25"]
     colour_bar = [ax for ax in fig.axes if not ax.images]
-    assert len(colour_bar) == 1 and colour_bar[0].get_ylabel() == "1/length"
+    assert len(colour_bar) == 1 and colour_bar[0].get_ylabel() == "mean_curvature (1/length)"
     # signed feature: diverging map, symmetric range shared by both radii (set by the larger one)
     low, high = colour_bar[0].get_ylim()
     assert low == pytest.approx(-high) and high > 1.5

@@ -86,12 +86,15 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     cmap, robust_low, robust_high = colour_range(feature, rows.ravel())
     low = robust_low if low is None else float(low)
     high = robust_high if high is None else float(high)
-    fig, axes = plt.subplots(len(angles), len(rows), figsize=(panel_inches * len(rows) + 1.0,
-                                                               panel_inches * len(angles) + 0.5),
-                             dpi=dpi, squeeze=False)
+    height = panel_inches * len(angles) + 0.8
+    fig, axes = plt.subplots(len(angles), len(rows), figsize=(panel_inches * len(rows) + 1.2, height), dpi=dpi,
+                             squeeze=False)
+    # Room at the top for the title and the radii, whatever the number of rows.
+    fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=1.0 - 0.75 / height, wspace=0.05, hspace=0.05)
+    unit = FEATURE_UNITS.get(feature, "")
     # The colour bar first: it takes its room from the panels, which then render at their final size.
     fig.colorbar(matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(low, high), cmap), ax=axes.ravel().tolist(),
-                 fraction=0.04, pad=0.03, label=FEATURE_UNITS.get(feature, ""))
+                 fraction=0.04, pad=0.03, panchor=False, label=f"{feature} ({unit})" if unit else feature)
     for column, (row_values, label) in enumerate(zip(rows, labels)):
         for line, angles_of_view in enumerate(angles):
             draw_vertex_values(axes[line, column], mesh.positions, mesh.faces, row_values, cmap, low, high,
