@@ -13,6 +13,7 @@ Quick start::
         frame.time, frame["mean_curvature"]
     ref = uvfeat.reference.compute(mesh, "gaussian_curvature", radius=0.05)  # object-space reference
     uvfeat.plot(mesh, maps["mean_curvature"], path="H.png")    # the mesh coloured by it, headless
+    uvfeat.view(mesh, maps)                    # interactive: radius slider, UV map (uvfeat[view])
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
@@ -30,14 +31,17 @@ from .errors import (
     InvalidParameterError,
     MeshFileError,
     MeshWarning,
+    MissingDependencyError,
     ResolutionTooLargeError,
     UvfeatError,
     UVError,
     UVWarning,
+    ViewerError,
 )
 from .features import FeatureMap
 from .options import FEATURES
 from .surface_plot import plot
+from .viewer import view
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 
@@ -59,12 +63,14 @@ __all__ = [
     "Mesh",
     "MeshFileError",
     "MeshWarning",
+    "MissingDependencyError",
     "ResolutionTooLargeError",
     "SUPPORTED_FORMATS",
     "SeamCrossing",
     "UVError",
     "UVWarning",
     "UvfeatError",
+    "ViewerError",
     "__version__",
     "animate",
     "compare",
@@ -75,4 +81,5 @@ __all__ = [
     "plot",
     "reference",
     "shapes",
+    "view",
 ]

@@ -132,14 +132,20 @@ def colour_range(name: str, values: np.ndarray, percentiles: tuple[float, float]
     return "viridis", low, high if high > low else low + 1.0
 
 
-def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
-    """(n, 4) uint8 colours of per-vertex values (grey where NaN), same mapping as the pictures."""
+def colour_values(values: np.ndarray, cmap: str, low: float, high: float) -> np.ndarray:
+    """(n, 3) float RGB of values through ``cmap`` clamped to ``[low, high]``, 0.5 grey where NaN."""
     import matplotlib
 
-    cmap, low, high = colour_range(name, values)
-    t = np.clip((np.nan_to_num(values, nan=low) - low) / (high - low), 0.0, 1.0)
-    rgba = (matplotlib.colormaps[cmap](t) * 255).astype(np.uint8)
-    rgba[~np.isfinite(values)] = (128, 128, 128, 255)
+    span = high - low if high > low else 1.0
+    rgb = matplotlib.colormaps[cmap](np.clip((np.nan_to_num(values, nan=low) - low) / span, 0.0, 1.0))[..., :3]
+    rgb[~np.isfinite(values)] = 0.5
+    return rgb
+
+
+def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
+    """(n, 4) uint8 colours of per-vertex values (grey where NaN), same mapping as the pictures."""
+    rgba = np.full(values.shape + (4,), 255, dtype=np.uint8)
+    rgba[..., :3] = np.round(colour_values(values, *colour_range(name, values)) * 255).astype(np.uint8)
     return rgba
 
 

@@ -177,7 +177,7 @@ def render_values(positions: np.ndarray, faces: np.ndarray, values: np.ndarray, 
     The picture spans ``bounds`` (lower-left and upper-right corners in view coordinates; default
     the mesh's own extent) at ``pixels_per_unit``; ``centre`` is the point the view turns around
     (default the mean vertex). Fixed bounds and centre keep the frames of an animation still."""
-    import matplotlib
+    from .images import colour_values
 
     p = view_coordinates(positions, view, up, centre)
     lower, upper = bounds if bounds is not None else (p[:, :2].min(axis=0), p[:, :2].max(axis=0))
@@ -187,9 +187,7 @@ def render_values(positions: np.ndarray, faces: np.ndarray, values: np.ndarray, 
     faces = visible_faces(screen, faces)
     fragments = rasterise(screen, faces, height, width)
     value = interpolate_values(fragments, faces, np.asarray(values, dtype=np.float64))
-    span = high - low if high > low else 1.0
-    colour = matplotlib.colormaps[cmap](np.clip((np.nan_to_num(value, nan=low) - low) / span, 0.0, 1.0))[:, :3]
-    colour[~np.isfinite(value)] = 0.5
+    colour = colour_values(value, cmap, low, high)
     picture = np.zeros((height * width, 4))
     picture[fragments.pixel, :3] = colour * shade(fragments, faces, vertex_normals(p, faces))[:, None]
     picture[fragments.pixel, 3] = 1.0
