@@ -18,7 +18,7 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh xatlas matplotlib pillow rich pygltflib pytest pygeodesic mypy imageio-ffmpeg polyscope
+	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh xatlas matplotlib pillow rich pygltflib pytest pygeodesic mypy imageio-ffmpeg polyscope scipy tifffile
 	$(BIN)/maturin develop --release -q
 
 demo: install

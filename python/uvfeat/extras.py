@@ -6,8 +6,9 @@ import importlib
 
 from .errors import MissingDependencyError
 
-#: The pip extra that installs each optional module.
-EXTRAS = {"imageio_ffmpeg": "video", "polyscope": "view", "tifffile": "bake"}
+#: The pip package and the uvfeat extra that install each optional module.
+EXTRAS = {"imageio_ffmpeg": ("imageio-ffmpeg", "video"), "polyscope": ("polyscope", "view"),
+          "tifffile": ("tifffile", "bake"), "scipy.ndimage": ("scipy", "bake")}
 
 
 def require(module: str, purpose: str):
@@ -15,5 +16,6 @@ def require(module: str, purpose: str):
     try:
         return importlib.import_module(module)
     except ImportError:
-        raise MissingDependencyError(f"{purpose} needs the optional package {module.replace('_', '-')}: "
-                                     f"pip install 'uvfeat[{EXTRAS[module]}]'") from None
+        package, extra = EXTRAS[module]
+        raise MissingDependencyError(f"{purpose} needs the optional package {package}: "
+                                     f"pip install 'uvfeat[{extra}]'") from None

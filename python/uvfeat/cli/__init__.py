@@ -1,5 +1,5 @@
 """The ``uvfeat`` command line, one module per command: ``uvfeat atlas``, ``compute``,
-``compare``, ``animate``, ``demo``, ``view``. Run ``uvfeat --help``."""
+``compare``, ``animate``, ``demo``, ``view``, ``bake``. Run ``uvfeat --help``."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ import sys
 
 from .._core import __version__
 from ..errors import UvfeatError
-from . import animate, atlas, compare, compute, demo, view
+from . import animate, atlas, bake, compare, compute, demo, view
 from .common import console
 
-COMMANDS = (atlas, compute, compare, animate, demo, view)
+COMMANDS = (atlas, compute, compare, animate, demo, view, bake)
 
 
 def build_parser() -> argparse.ArgumentParser:
