@@ -80,7 +80,6 @@ def test_the_bake_command_writes_files_other_tools_read(tmp_path):
                  "--resolution", "512", "--compute-resolution", "64", "--samples", "64", "--out", str(out)]) == 0
     summary = json.loads((out / "bake.json").read_text())
     files = summary["radii"]["4%"]["files"]["mean_curvature"]
-    data = np.load  # noqa: F841 - the per-vertex values come from the PLY below
     ply = trimesh.load(out / "per_vertex_r4pct.ply", process=False)
     quality = ply.metadata["_ply_raw"]["vertex"]["data"]["quality"]
     np.testing.assert_array_equal(quality, ply.metadata["_ply_raw"]["vertex"]["data"]["mean_curvature"])
