@@ -36,8 +36,9 @@ def reds_and_blues(picture):
            ((rgb[..., 2] - rgb[..., 0] > 60) & covered(picture)).sum()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def sphere_viewer():
+    # polyscope has one scene per process: every Viewer replaces the last one's, so one per test
     sphere = uvfeat.shapes.uv_sphere(1.0, 48, 24)
     upper = np.sign(sphere.positions[:, 1])     # +1 on the upper half (y up), -1 below
     return uvfeat.view(sphere, {"mean_curvature": np.stack([upper, -upper])}, radius=["1%", "4%"],
@@ -116,3 +117,33 @@ def test_the_view_command_renders_a_screenshot_headless(tmp_path):
     picture = np.asarray(Image.open(shot))
     assert covered(picture).mean() > 0.05
     assert main(["view", str(path), "--feature", "bogus", "--screenshot", str(shot)]) == 2
+
+
+def test_the_vertex_under_the_cursor_on_the_mesh_and_on_the_uv_map(sphere_viewer):
+    import polyscope as ps
+
+    sphere_viewer.set_scale(0)
+    height, width = sphere_viewer.screenshot().shape[:2]
+    row = height // 2 - 100                                  # above the middle: the sphere's upper half
+    hits = {}
+    for x in range(0, width, 20):
+        pick = ps.pick(screen_coords=(x, row))
+        vertex = sphere_viewer.vertex_under((x, row))
+        if pick.is_hit and vertex is not None:
+            hits.setdefault(pick.structure_name, []).append(vertex)
+    assert set(hits) == {"mesh", "UV map"}, hits
+    assert all(sphere_viewer.mesh.positions[v, 1] > 0 for v in hits["mesh"])
+    assert all(sphere_viewer.value_at(v) == 1.0 for v in hits["mesh"])
+
+
+def test_the_panel_draws_a_frame(sphere_viewer):
+    import polyscope as ps
+
+    from uvfeat.viewer_panel import Panel, radius_argument
+
+    panel = Panel(sphere_viewer)
+    ps.set_user_callback(panel.draw)
+    ps.frame_tick()                                          # every widget once, headless
+    ps.clear_user_callback()
+    assert panel.message == ""
+    assert radius_argument(" 0.25 ") == 0.25 and radius_argument("4%") == "4%"

@@ -75,7 +75,8 @@ def tangent_basis(normals: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 class Viewer:
-    """The scene and its state. Build it with :func:`view`; ``show()`` opens the window."""
+    """The scene and its state. Build it with :func:`view`; ``show()`` opens the window. Polyscope
+    has one scene per process: a new Viewer replaces the previous one's."""
 
     def __init__(self, mesh: Mesh, scales: list[Scale], *, atlas=None, compute_options: dict | None = None,
                  feature: str | None = None, backend: str = "auto"):
