@@ -94,3 +94,21 @@ def test_compute_writes_a_3d_picture_of_every_feature(tmp_path):
     for name in ("mean_curvature_3d.png", "curvedness_3d.png"):
         assert (out / name).stat().st_size > 10_000
     assert json.loads((out / "summary.json").read_text())["timings_s"]["pictures_3d_s"] > 0
+
+
+@pytest.mark.shared
+def test_a_100k_face_scan_is_drawn_in_seconds(shared_mesh, tmp_path):
+    import time
+
+    import trimesh
+
+    scan = trimesh.load(shared_mesh("dragon.obj"), process=False, force="mesh")
+    mesh = uvfeat.Mesh(scan.vertices, scan.faces, name="dragon")   # no UVs needed to draw it
+    assert mesh.n_faces >= 100_000
+    values = mesh.positions[:, 1] - mesh.positions[:, 1].mean()
+    started = time.perf_counter()
+    uvfeat.plot(mesh, values, feature="mean_curvature", radius="2%", path=tmp_path / "dragon.png")
+    elapsed = time.perf_counter() - started
+    plt.close("all")
+    assert elapsed < 10.0, f"three views of {mesh.n_faces} faces took {elapsed:.1f} s"
+    assert (tmp_path / "dragon.png").stat().st_size > 50_000

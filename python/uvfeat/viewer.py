@@ -97,7 +97,7 @@ class Viewer:
             except Exception as error:  # polyscope raises bare RuntimeErrors (no display, no GL)
                 raise ViewerError(f"the viewer could not start polyscope's {backend!r} backend ({error}); without a "
                                   f"display, render headless with backend={HEADLESS!r} (uvfeat view --screenshot), "
-                                  "which needs EGL (Debian: libegl1 libgl1-mesa-dri)") from None
+                                  "which needs EGL (Debian: libegl1 libegl-mesa0 libgl1-mesa-dri)") from None
         self.ps.set_up_dir("y_up")
         self.ps.set_ground_plane_mode("none")
         self.ps.remove_all_structures()
