@@ -37,24 +37,31 @@ def resolve_view(view) -> tuple[float, float]:
     return elevation, azimuth
 
 
-def _values_and_labels(mesh, values, feature, radius):
-    """Per-vertex values as ``(n_radii, n_vertices)``, the feature name and one label per radius."""
+def radius_label(radius) -> str:
+    """A radius as shown: labels such as ``"4%"`` as given, numbers to 4 significant digits."""
+    return radius if isinstance(radius, str) else f"{float(radius):.4g}"
+
+
+def per_vertex_rows(mesh, values, radius=None, name: str = "values") -> tuple[np.ndarray, list[str] | None]:
+    """Per-vertex values as ``(n_radii, n_vertices)`` rows and a label per radius (None when no
+    radius is known), from a :class:`~uvfeat.FeatureMap` (its radii unless ``radius`` is given) or
+    an array ``(n_vertices,)`` / ``(n_radii, n_vertices)``; ``radius`` holds numbers or labels."""
     from .features import FeatureMap
 
     if isinstance(values, FeatureMap):
-        feature = feature or values.name
         radius = values.radius if radius is None else radius
         values = values.per_vertex()
     values = np.asarray(values, dtype=np.float64)
     rows = values[None] if values.ndim == 1 else values
     if rows.ndim != 2 or rows.shape[1] != mesh.n_vertices:
-        raise InvalidParameterError(f"values must be per vertex, (n_vertices,) or (n_radii, n_vertices) with "
+        raise InvalidParameterError(f"{name} must be per vertex, (n_vertices,) or (n_radii, n_vertices) with "
                                     f"n_vertices = {mesh.n_vertices}, got shape {values.shape}")
-    radii = [None] * len(rows) if radius is None else list(np.atleast_1d(np.asarray(radius, dtype=object)))
-    if len(radii) != len(rows):
-        raise InvalidParameterError(f"{len(radii)} radii given for {len(rows)} rows of values")
-    labels = [None if r is None else f"r = {r}" if isinstance(r, str) else f"r = {float(r):.4g}" for r in radii]
-    return rows, feature or "value", labels
+    if radius is None:
+        return rows, None
+    labels = [radius_label(r) for r in np.atleast_1d(np.asarray(radius, dtype=object))]
+    if len(labels) != len(rows):
+        raise InvalidParameterError(f"{len(labels)} radii given for {len(rows)} rows of {name}")
+    return rows, labels
 
 
 def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT_VIEWS, up: str = "y",
@@ -79,7 +86,8 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
 
     if up not in UP_AXES:
         raise InvalidParameterError(f"up must be one of {sorted(UP_AXES)}, got {up!r}")
-    rows, feature, labels = _values_and_labels(mesh, values, feature, radius)
+    feature = feature or getattr(values, "name", None) or "value"
+    rows, labels = per_vertex_rows(mesh, values, radius)
     angles = [resolve_view(v) for v in ([views] if isinstance(views, str) else views)]
     if not angles:
         raise InvalidParameterError("plot needs at least one view")
@@ -95,12 +103,12 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     # The colour bar first: it takes its room from the panels, which then render at their final size.
     fig.colorbar(matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(low, high), cmap), ax=axes.ravel().tolist(),
                  fraction=0.04, pad=0.03, panchor=False, label=f"{feature} ({unit})" if unit else feature)
-    for column, (row_values, label) in enumerate(zip(rows, labels)):
+    for column, (row_values, label) in enumerate(zip(rows, labels or [None] * len(rows))):
         for line, angles_of_view in enumerate(angles):
             draw_vertex_values(axes[line, column], mesh.positions, mesh.faces, row_values, cmap, low, high,
                                view=angles_of_view, up=up)
             if line == 0 and label:
-                axes[line, column].set_title(label)
+                axes[line, column].set_title(f"r = {label}")
     fig.suptitle(title if title is not None else f"{mesh.name}: {feature}")
     if path is not None:
         fig.savefig(os.fspath(path), bbox_inches="tight")

@@ -36,30 +36,20 @@ class Scale:
 def scales_from_results(mesh: Mesh, results: dict, radius=None) -> list[Scale]:
     """Scales from ``{feature: FeatureMap}`` (one radius or a stack) or ``{feature: array}`` of
     shape ``(n_vertices,)`` or ``(n_radii, n_vertices)`` with ``radius`` labelling the rows."""
-    from .features import FeatureMap
+    from .surface_plot import per_vertex_rows
 
     if not results:
         raise InvalidParameterError("the viewer needs at least one feature")
     rows, labels, directions = {}, None, None
     for name, result in results.items():
-        if isinstance(result, FeatureMap):
-            radius = result.radius if radius is None else radius
-            if result.principal_directions is not None and directions is None:
-                directions = result.per_vertex_directions()
-            result = result.per_vertex()
-        values = np.asarray(result, dtype=np.float64)
-        rows[name] = values[None] if values.ndim == 1 else values
-        if rows[name].ndim != 2 or rows[name].shape[1] != mesh.n_vertices:
-            raise InvalidParameterError(f"{name}: values must be (n_vertices,) or (n_radii, n_vertices) with "
-                                        f"n_vertices = {mesh.n_vertices}, got shape {values.shape}")
+        if getattr(result, "principal_directions", None) is not None and directions is None:
+            directions = result.per_vertex_directions()
+        rows[name], labels = per_vertex_rows(mesh, result, radius, name)
     counts = {len(v) for v in rows.values()}
     if len(counts) != 1:
         raise InvalidParameterError(f"every feature needs the same number of radii, got {sorted(counts)}")
     n = counts.pop()
-    labels = [f"scale {k + 1}" for k in range(n)] if radius is None else \
-        [r if isinstance(r, str) else f"{float(r):.4g}" for r in np.atleast_1d(np.asarray(radius, dtype=object))]
-    if len(labels) != n:
-        raise InvalidParameterError(f"{len(labels)} radii given for {n} rows of values")
+    labels = labels or [f"scale {k + 1}" for k in range(n)]
     if directions is not None and directions.ndim == 3:
         directions = directions[None]
     return [Scale(labels[k], {name: v[k] for name, v in rows.items()}, None if directions is None else directions[k])
@@ -144,14 +134,14 @@ class Viewer:
     def add_radius(self, radius) -> None:
         """Computes every feature at one more ``radius`` (object units or ``"2%"``) and shows it."""
         from .atlas import Atlas
+        from .surface_plot import radius_label
 
         if self._atlas is None:
             self._atlas = Atlas(self.mesh)
         maps = self._atlas.compute(self.features, radius, **self.compute_options)
         first = next(iter(maps.values()))
         directions = first.per_vertex_directions() if first.principal_directions is not None else None
-        label = radius if isinstance(radius, str) else f"{float(radius):.4g}"
-        self.scales.append(Scale(label, {name: m.per_vertex() for name, m in maps.items()}, directions))
+        self.scales.append(Scale(radius_label(radius), {name: m.per_vertex() for name, m in maps.items()}, directions))
         self.set_scale(len(self.scales) - 1)
 
     def set_directions(self, shown: bool) -> None:
