@@ -168,6 +168,18 @@ def test_cli_writes_frames_maps_and_a_gif(tmp_path):
         assert last["time"] == 1.0 and np.median(last["mean_curvature"]) == pytest.approx(0.5, rel=0.05)
     assert np.load(out / "mean_curvature_0001.npy").shape == (64, 64)
     assert Image.open(out / "mean_curvature.gif").n_frames == 3
+    # the 3D view: one still camera framed on the first frame, so the growing sphere covers more of it
+    with Image.open(out / "mean_curvature_3d.gif") as gif:
+        covered = []
+        for k in range(gif.n_frames):
+            gif.seek(k)
+            covered.append((np.asarray(gif.convert("RGB")).min(axis=-1) < 200).mean())
+    assert len(covered) == 3 and 0.1 < covered[0] < covered[1] < covered[2], covered
+    import imageio_ffmpeg
+
+    reader = imageio_ffmpeg.read_frames(str(out / "mean_curvature_3d.mp4"))
+    meta = next(reader)
+    assert meta["size"] == tuple(n + n % 2 for n in gif.size) and len(list(reader)) == 3
     summary = json.loads((out / "summary.json").read_text())
     assert summary["animation"] == "grow" and len(summary["timings"]["per_frame"]) == 3
     assert summary["settings"]["method"] == "fit"

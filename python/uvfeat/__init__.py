@@ -13,6 +13,8 @@ Quick start::
         frame.time, frame["mean_curvature"]
     table = uvfeat.batch(["scans/", "*.ply"], "mean_curvature", "2%", out="runs/")   # many meshes, on Dask
     ref = uvfeat.reference.compute(mesh, "gaussian_curvature", radius=0.05)  # object-space reference
+    uvfeat.plot(mesh, maps["mean_curvature"], path="H.png")    # the mesh coloured by it, headless
+    uvfeat.view(mesh, maps)                    # interactive: radius slider, UV map (uvfeat[view])
 
 Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward normals by the
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
@@ -37,9 +39,12 @@ from .errors import (
     UvfeatError,
     UVError,
     UVWarning,
+    ViewerError,
 )
 from .features import FeatureMap
 from .options import FEATURES
+from .surface_plot import plot
+from .viewer import view
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 
@@ -69,6 +74,7 @@ __all__ = [
     "UVError",
     "UVWarning",
     "UvfeatError",
+    "ViewerError",
     "__version__",
     "animate",
     "batch",
@@ -77,6 +83,8 @@ __all__ = [
     "examples",
     "load",
     "options",
+    "plot",
     "reference",
     "shapes",
+    "view",
 ]

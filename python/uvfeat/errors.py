@@ -43,7 +43,12 @@ class AnimationError(UvfeatError, ValueError):
 
 
 class MissingDependencyError(UvfeatError, ImportError):
-    """An optional dependency is not installed; the message names the ``pip install`` that adds it."""
+    """An optional dependency is not installed; the message names the ``pip install uvfeat[...]``
+    extra that brings it."""
+
+
+class ViewerError(UvfeatError, RuntimeError):
+    """The interactive viewer cannot start: no display or no OpenGL/EGL for its backend."""
 
 
 class ClusterError(UvfeatError, OSError):

@@ -1,5 +1,6 @@
 """What ``uvfeat compute`` writes for one mesh, shared with ``uvfeat batch``: per-vertex values
-(``.ply``, ``.npz``), feature maps (``.npy``, optionally ``.png``) and ``summary.json`` with the
+(``.ply``, ``.npz``), feature maps (``.npy``, optionally ``.png`` and the 3D pictures
+``FEATURE_3d.png``) and ``summary.json`` with the
 settings, which a later batch run compares to decide whether the mesh is finished."""
 
 from __future__ import annotations
@@ -94,6 +95,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
 
     from .atlas import Atlas
     from .images import save_feature_figure
+    from .surface_plot import save_plot
 
     os.makedirs(out, exist_ok=True)
     options = {"query": job.query, "standard_error": job.standard_error, "method": job.method,
@@ -107,6 +109,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     summary["warnings"] += atlas.warnings()
     timings = dict(atlas.timings)
     advance("buffers ready")
+    on_mesh: dict[str, list] = {name: [] for name in job.features}
     for radius in job.radii:
         advance(f"features at r = {radius}", done=False)
         with warnings.catch_warnings(record=True) as caught:
@@ -119,6 +122,8 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
         advance(f"per-vertex values at r = {radius}")
         started_pv = time.perf_counter()
         per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+        for name, values in per_vertex.items():
+            on_mesh[name].append(values)
         tag = radius_tag(radius)
         directions = first.per_vertex_directions() if job.method == "fit" else None
         write_per_vertex(out, tag, mesh, first.radius, per_vertex, directions)
@@ -138,6 +143,13 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
             "diagnostics": first.summary,
             "per_vertex_range": {n: [float(np.nanmin(v)), float(np.nanmax(v))] for n, v in per_vertex.items()},
         }
+    if job.pictures:
+        advance("3D pictures", done=False)
+        started_3d = time.perf_counter()
+        for name, rows in on_mesh.items():
+            save_plot(os.path.join(out, f"{name}_3d.png"), mesh, np.stack(rows), feature=name, radius=list(job.radii))
+        timings["pictures_3d_s"] = time.perf_counter() - started_3d
+        advance("3D pictures ready")
     summary["timings_s"] = dict(timings, total=time.perf_counter() - started)
     finished = os.path.join(out, SUMMARY)
     write_json(finished + ".partial", summary)

@@ -132,14 +132,20 @@ def colour_range(name: str, values: np.ndarray, percentiles: tuple[float, float]
     return "viridis", low, high if high > low else low + 1.0
 
 
-def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
-    """(n, 4) uint8 colours of per-vertex values (grey where NaN), same mapping as the pictures."""
+def colour_values(values: np.ndarray, cmap: str, low: float, high: float) -> np.ndarray:
+    """(n, 3) float RGB of values through ``cmap`` clamped to ``[low, high]``, 0.5 grey where NaN."""
     import matplotlib
 
-    cmap, low, high = colour_range(name, values)
-    t = np.clip((np.nan_to_num(values, nan=low) - low) / (high - low), 0.0, 1.0)
-    rgba = (matplotlib.colormaps[cmap](t) * 255).astype(np.uint8)
-    rgba[~np.isfinite(values)] = (128, 128, 128, 255)
+    span = high - low if high > low else 1.0
+    rgb = matplotlib.colormaps[cmap](np.clip((np.nan_to_num(values, nan=low) - low) / span, 0.0, 1.0))[..., :3]
+    rgb[~np.isfinite(values)] = 0.5
+    return rgb
+
+
+def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
+    """(n, 4) uint8 colours of per-vertex values (grey where NaN), same mapping as the pictures."""
+    rgba = np.full(values.shape + (4,), 255, dtype=np.uint8)
+    rgba[..., :3] = np.round(colour_values(values, *colour_range(name, values)) * 255).astype(np.uint8)
     return rgba
 
 
@@ -183,3 +189,21 @@ def save_gif(path: str | os.PathLike, pictures: list[np.ndarray], fps: float) ->
     frames = [Image.fromarray(p) for p in pictures]
     frames[0].save(os.fspath(path), save_all=True, append_images=frames[1:], duration=max(20, round(1000 / fps)),
                    loop=0)
+
+
+def save_mp4(path: str | os.PathLike, pictures: list[np.ndarray], fps: float) -> None:
+    """An H.264 MP4 of uint8 RGB pictures at ``fps`` frames per second, through the ffmpeg that
+    the ``imageio-ffmpeg`` wheel ships (``pip install 'uvfeat[video]'``); pictures are padded
+    white to even sizes, which the yuv420p pixel format players expect needs."""
+    from .extras import require
+
+    imageio_ffmpeg = require("imageio_ffmpeg", "writing MP4")
+    height, width = (n + n % 2 for n in pictures[0].shape[:2])
+    writer = imageio_ffmpeg.write_frames(os.fspath(path), (width, height), fps=fps, codec="libx264",
+                                         pix_fmt_out="yuv420p", macro_block_size=1, quality=7)
+    writer.send(None)  # starts ffmpeg
+    for picture in pictures:
+        padded = np.full((height, width, 3), 255, dtype=np.uint8)
+        padded[:picture.shape[0], :picture.shape[1]] = picture
+        writer.send(np.ascontiguousarray(padded))
+    writer.close()

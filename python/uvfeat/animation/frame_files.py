@@ -1,7 +1,8 @@
 """Files ``uvfeat animate`` writes: per frame ``frame_NNNN.npz`` (time, positions, per-vertex
 features) and ``FEATURE_NNNN.npy`` maps, written by whichever process computes the frame; then,
-once every frame is on disk, the pictures (``FEATURE_NNNN.png``, ``FEATURE.gif``) in one colour
-range taken from the first frame, so frames computed apart still compare."""
+once every frame is on disk, the pictures (``FEATURE_NNNN.png``, ``FEATURE.gif``, and the mesh
+coloured by the feature from one still camera, ``FEATURE_3d.gif`` and ``FEATURE_3d.mp4``) in one
+colour range taken from the first frame, so frames computed apart still compare."""
 
 from __future__ import annotations
 
@@ -50,22 +51,35 @@ def animate_frames(mesh: str, features, radius, options: dict, out: str, start: 
     return {"frames": write_frames(animation, out, start, stop), "notes": notes + animation.atlas.warnings()}
 
 
-def write_pictures(out: str, features: list[str], n_frames: int, fps: float) -> dict[str, list[float]]:
-    """``FEATURE_NNNN.png`` and ``FEATURE.gif`` from the written maps; returns each feature's
-    colour range (that of the first frame)."""
+def write_pictures(out: str, features: list[str], n_frames: int, fps: float, faces: np.ndarray,
+                   view: str = "three_quarter") -> tuple[dict[str, list[float]], list[str]]:
+    """``FEATURE_NNNN.png``, ``FEATURE.gif`` and the 3D views ``FEATURE_3d.gif``/``.mp4`` (camera
+    framed on the first frame) from the written files; returns each feature's colour range (that
+    of the first frame) and notes (an MP4 that could not be written)."""
     from PIL import Image
 
-    from ..images import colour_range, feature_picture, save_gif
+    from ..errors import MissingDependencyError
+    from ..images import colour_range, feature_picture, save_gif, save_mp4
+    from ..surface_plot import FixedCamera
 
-    ranges = {}
+    ranges, notes, camera = {}, [], None
     for name in features:
-        pictures = []
+        pictures, views = [], []
         for k in range(n_frames):
             texture = np.load(map_path(out, name, k, "npy"))
+            with np.load(os.path.join(out, f"frame_{k:04d}.npz")) as frame:
+                positions, values = frame["positions"], frame[name]
             if name not in ranges:
-                ranges[name] = list(colour_range(name, texture)[1:])
-            pictures.append(feature_picture(name, texture, *ranges[name]))
+                ranges[name] = list(colour_range(name, texture))
+            camera = camera or FixedCamera.framing(positions, view)
+            pictures.append(feature_picture(name, texture, *ranges[name][1:]))
             Image.fromarray(pictures[-1]).save(map_path(out, name, k, "png"))
+            views.append(camera.picture(positions, faces, values, *ranges[name]))
         if pictures:
             save_gif(os.path.join(out, f"{name}.gif"), pictures, fps)
-    return ranges
+            save_gif(os.path.join(out, f"{name}_3d.gif"), views, fps)
+            try:
+                save_mp4(os.path.join(out, f"{name}_3d.mp4"), views, fps)
+            except MissingDependencyError as missing:
+                notes.append(f"no MP4 written: {missing}")
+    return {name: r[1:] for name, r in ranges.items()}, notes

@@ -1,5 +1,5 @@
 """The ``uvfeat`` command line, one module per command: ``uvfeat atlas``, ``compute``,
-``batch``, ``compare``, ``animate``, ``demo``. Run ``uvfeat --help``."""
+``batch``, ``compare``, ``animate``, ``demo``, ``view``, ``bake``. Run ``uvfeat --help``."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ import sys
 
 from .._core import __version__
 from ..errors import UvfeatError
-from . import animate, atlas, batch, compare, compute, demo
+from . import animate, atlas, bake, batch, compare, compute, demo, view
 from .common import console
 
-COMMANDS = (atlas, compute, batch, compare, animate, demo)
+COMMANDS = (atlas, compute, batch, compare, animate, demo, view, bake)
 
 
 def build_parser() -> argparse.ArgumentParser:

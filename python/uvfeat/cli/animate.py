@@ -12,6 +12,7 @@ from .._core import __version__
 from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
 from ..options import ARGUMENT_DEFAULTS
+from ..surface_plot import VIEWS
 from ..writers import write_json
 from .common import add_atlas_options, add_cluster_options, add_feature_options, console, print_dashboard, throughput
 
@@ -20,7 +21,8 @@ def add_command(commands) -> None:
     parser = commands.add_parser(
         "animate", help="features of every frame of an animation (glTF skins/morphs, mesh files or a .npy array)",
         description="Writes frame_NNNN.npz (time, positions, per-vertex features), FEATURE_NNNN.npy and .png maps "
-        "(v up, one colour range for all frames), FEATURE.gif and summary.json (timings per frame).")
+        "(v up, one colour range for all frames), FEATURE.gif (the maps), FEATURE_3d.gif and FEATURE_3d.mp4 (the mesh "
+        "coloured by the feature, one still camera) and summary.json (timings per frame).")
     parser.add_argument("mesh", help="mesh file; a glTF/GLB file plays its own animation unless --frames is given")
     parser.add_argument("--frames", nargs="+", metavar="FILE", help="frames: one .npy array (n_frames, V, 3) or "
                         "mesh files with the mesh's vertices and faces, in order")
@@ -37,6 +39,8 @@ def add_command(commands) -> None:
     add_cluster_options(parser)
     parser.add_argument("--frames-per-task", type=int, metavar="N", help="with --scheduler/--workers: frames per "
                         "task, each building the atlas once (default: two tasks per worker thread)")
+    parser.add_argument("--view", choices=sorted(VIEWS), default="three_quarter",
+                        help="camera of the 3D pictures, framed on the first frame (default %(default)s)")
     parser.set_defaults(handler=run)
 
 
@@ -67,7 +71,8 @@ def run(args) -> int:
         else:
             per_frame = write_frames(frames, args.out, 0, total, on_frame=lambda frame: advance())
     os.makedirs(args.out, exist_ok=True)
-    ranges = write_pictures(args.out, frames.features, total, args.fps)
+    ranges, picture_notes = write_pictures(args.out, frames.features, total, args.fps, frames.mesh.faces, args.view)
+    notes += picture_notes
     mean_ms = {key: float(np.mean([f[key] for f in per_frame])) for key in per_frame[0] if key.endswith("_ms")} \
         if per_frame else {}
     summary = {
@@ -85,6 +90,6 @@ def run(args) -> int:
                   f"(buffers {mean_ms.get('update_ms', 0.0):.0f} ms, features {mean_ms.get('features_ms', 0.0):.0f} ms)")
     for note in notes:
         out.print(f"[yellow]note:[/yellow] {note}")
-    out.print(f"wrote frame_*.npz, per-frame maps .npy/.png, {', '.join(f + '.gif' for f in frames.features)} "
-                  f"and summary.json to {args.out}")
+    out.print(f"wrote frame_*.npz, per-frame maps .npy/.png, {', '.join(f + '.gif' for f in frames.features)}, "
+              f"3D views {', '.join(f + '_3d.gif/.mp4' for f in frames.features)} and summary.json to {args.out}")
     return 0

@@ -1,0 +1,62 @@
+"""``uvfeat bake``: features written as textures on the mesh's UVs, GLB and PLY files that other
+tools open (MeshLab, Blender, glTF viewers, texture painters)."""
+
+from __future__ import annotations
+
+import os
+import warnings
+
+from .._core import __version__
+from ..writers import write_json
+from .common import add_feature_command_options, on_file, print_notes_and_outputs, radius_tag, steps
+
+
+def add_command(commands) -> None:
+    parser = commands.add_parser("bake", help="bake features into textures (16-bit PNG, float TIFF, curvature map), "
+                                 "GLB and PLY for other tools (needs uvfeat[bake])",
+                                 description="Per feature and radius: FEATURE_rR.png (16-bit grey, range in the text "
+                                 "chunks), .tif (float32), _curvature.png (8-bit, 128 = 0, signed features), "
+                                 "_colour.png, _colours.glb (vertex colours) and _texture.glb (texture), all on the "
+                                 "mesh's own UVs with dilated gutters; per radius per_vertex_rR.ply (quality = the first "
+                                 "feature); bake.json.")
+    add_feature_command_options(parser, "; comma-separated for several scales")
+    parser.set_defaults(handler=on_file(write_bakes), out="uvfeat-out/bake")
+
+
+def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> dict:
+    from ..atlas import Atlas
+    from ..bake import bake_feature, write_quality_ply
+    from ..options import feature_names
+
+    names = feature_names(args.feature)
+    radii = [r.strip() for r in args.radius.split(",") if r.strip()]
+    os.makedirs(args.out, exist_ok=True)
+    summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
+               "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,
+                            "compute_resolution": args.compute_resolution, "method": args.method, "seed": args.seed}}
+    with steps(console, 1 + 2 * len(radii)) as advance:
+        advance("pre-processing + rasterising", done=False)
+        atlas = Atlas(mesh, resolution=args.resolution)
+        summary["warnings"] += atlas.warnings()
+        for radius in radii:
+            advance(f"features at r = {radius}")
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                maps = atlas.compute(names, radius, samples=args.samples, compute_resolution=args.compute_resolution,
+                                     seed=args.seed, method=args.method, sampling=args.sampling, query=args.query)
+            summary["warnings"] += sorted({str(w.message) for w in caught})
+            advance(f"bakes at r = {radius}")
+            tag = radius_tag(radius)
+            per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+            files = {name: {kind: os.path.basename(path) for kind, path in
+                            bake_feature(args.out, f"{name}_r{tag}", atlas.mesh, name, m.texture, per_vertex[name],
+                                         m.radius).items()}
+                     for name, m in maps.items()}
+            ply = os.path.join(args.out, f"per_vertex_r{tag}.ply")
+            write_quality_ply(ply, atlas.mesh, names[0], per_vertex)
+            summary["radii"][radius] = {"radius": next(iter(maps.values())).radius, "files": files,
+                                        "ply": os.path.basename(ply)}
+        write_json(os.path.join(args.out, "bake.json"), summary)
+    print_notes_and_outputs(console, summary["warnings"], "textures (.png 16-bit, .tif float, curvature and colour "
+                            ".png), .glb, .ply and bake.json", args.out)
+    return summary

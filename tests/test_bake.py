@@ -1,0 +1,108 @@
+"""uvfeat bake: the texture on the mesh's own UVs, read back with bilinear filtering at the
+vertices' UVs, gives back the per-vertex values without seam outliers; the 16-bit PNG, float TIFF
+and curvature map decode to the values; the GLBs open in trimesh with their colours; the PLY has
+MeshLab's quality."""
+
+import json
+
+import numpy as np
+import pytest
+import trimesh
+from PIL import Image
+
+import uvfeat
+from uvfeat.bake import dilate, sample_bilinear
+from uvfeat.cli import main
+
+tifffile = pytest.importorskip("tifffile", reason="float TIFF needs the extra uvfeat[bake]")
+pytest.importorskip("scipy", reason="gutter dilation needs the extra uvfeat[bake]")
+
+
+@pytest.fixture(scope="module")
+def spot_map():
+    mesh = uvfeat.examples.spot()
+    feature = uvfeat.Atlas(mesh, resolution=512).compute("mean_curvature", "4%", compute_resolution=128,
+                                                        samples=64)["mean_curvature"]
+    return mesh, feature
+
+
+def read_back(mesh, texture):
+    """Per-vertex values from a texture as a renderer sees it: bilinear at every distinct corner
+    UV, averaged over the corners of each point of the surface (seams split Spot's vertices)."""
+    pairs = np.unique(np.stack([mesh.faces.ravel(), mesh.uv_faces.ravel()], axis=1), axis=0)
+    samples = sample_bilinear(texture, mesh.uvs[pairs[:, 1]])
+    _, point = np.unique(mesh.positions, axis=0, return_inverse=True)
+    point = point.ravel()
+    total = np.bincount(point[pairs[:, 0]], samples)
+    count = np.bincount(point[pairs[:, 0]])
+    return (total / count)[point], np.bincount(point)[point] > 1
+
+
+def test_the_baked_texture_gives_back_the_per_vertex_values_without_seam_outliers(spot_map):
+    mesh, feature = spot_map
+    truth = feature.per_vertex()
+    spread = np.percentile(truth, 99) - np.percentile(truth, 1)
+    baked, seam = read_back(mesh, dilate(feature.texture))
+    error = np.abs(baked - truth) / spread
+    assert seam.sum() > 300 and np.isfinite(baked).all()
+    # exact inside the charts, a few % of the range where the chart-masked lookup and plain
+    # bilinear filtering weigh a border footprint differently (docs/USAGE.md, "Bakes")
+    assert np.median(error[~seam]) < 1e-6
+    assert np.percentile(error[seam], 99) < 0.08 and error[seam].max() < 0.12, error[seam].max()
+    # what the dilation prevents: gutters left at 0 pull seam corners towards 0
+    undilated, _ = read_back(mesh, np.nan_to_num(feature.texture))
+    undilated_error = (np.abs(undilated - truth) / spread)[seam]
+    print(f"seam error / range: dilated p99 {np.percentile(error[seam], 99):.4f} max {error[seam].max():.4f}; "
+          f"zero gutters p99 {np.percentile(undilated_error, 99):.4f} max {undilated_error.max():.4f}")
+    assert np.percentile(undilated_error, 99) > 2 * np.percentile(error[seam], 99)
+
+
+def test_dilation_fills_every_texel_and_keeps_the_filled_ones():
+    texture = np.full((8, 8), np.nan)
+    texture[2:4, 2:4] = [[1.0, 2.0], [3.0, 4.0]]
+    filled = dilate(texture)
+    assert np.isfinite(filled).all()
+    np.testing.assert_array_equal(filled[2:4, 2:4], texture[2:4, 2:4])
+    assert filled[1, 1] == 1.0 and filled[7, 7] == 4.0          # the ring averages; the far corner: nearest
+    assert filled[1, 2] == pytest.approx(1.5)                   # mean of the two filled neighbours
+
+
+def test_bilinear_sampling_at_texel_centres_and_between():
+    texture = np.arange(16.0).reshape(4, 4)                     # [j, i], value = 4 j + i
+    np.testing.assert_allclose(sample_bilinear(texture, np.array([[0.125, 0.125], [0.375, 0.625]])), [0.0, 9.0])
+    np.testing.assert_allclose(sample_bilinear(texture, np.array([[0.25, 0.25]])), [2.5])
+
+
+def test_the_bake_command_writes_files_other_tools_read(tmp_path):
+    mesh = uvfeat.examples.spot()
+    out = tmp_path / "bake"
+    assert main(["bake", uvfeat.examples.spot_path(), "--feature", "mean_curvature,curvedness", "--radius", "4%",
+                 "--resolution", "512", "--compute-resolution", "64", "--samples", "64", "--out", str(out)]) == 0
+    summary = json.loads((out / "bake.json").read_text())
+    files = summary["radii"]["4%"]["files"]["mean_curvature"]
+    ply = trimesh.load(out / "per_vertex_r4pct.ply", process=False)
+    quality = ply.metadata["_ply_raw"]["vertex"]["data"]["quality"]
+    np.testing.assert_array_equal(quality, ply.metadata["_ply_raw"]["vertex"]["data"]["mean_curvature"])
+    assert len(quality) == mesh.n_vertices
+    # 16-bit PNG: v up, decoded through the range in its text chunks, equals the float TIFF
+    png = Image.open(out / files["png16"])
+    assert png.mode.startswith("I;16") or png.mode == "I"
+    low, high = float(png.text["uvfeat.low"]), float(png.text["uvfeat.high"])
+    decoded = low + np.asarray(png, dtype=np.float64) / 65535 * (high - low)
+    tiff = tifffile.imread(out / files["tiff"])
+    assert tiff.dtype == np.float32 and np.isfinite(tiff).all()
+    np.testing.assert_allclose(decoded, tiff, atol=(high - low) / 65535)
+    assert json.loads(tifffile.TiffFile(out / files["tiff"]).pages[0].description)["uvfeat.feature"] == "mean_curvature"
+    # 8-bit curvature map: 128 = 0, the scale in the metadata
+    curvature = Image.open(out / files["curvature"])
+    scale = float(curvature.text["uvfeat.scale"])
+    grey = np.asarray(curvature, dtype=np.float64)
+    np.testing.assert_allclose((grey - 128) * scale, np.clip(tiff, -127 * scale, 127 * scale), atol=scale)
+    assert "curvature" not in summary["radii"]["4%"]["files"]["curvedness"]    # unsigned: no 0.5-grey map
+    # GLBs: vertex colours, and a texture on the UVs
+    coloured = trimesh.load(out / files["colours"], force="mesh")
+    colours = coloured.visual.vertex_colors[:, :3].astype(int)
+    assert len(np.unique(colours, axis=0)) > 100 and (np.abs(colours[:, 0] - colours[:, 2]) > 40).mean() > 0.05
+    textured = trimesh.load(out / files["texture"], force="mesh")
+    image = np.asarray(textured.visual.material.baseColorTexture)
+    assert image.shape[:2] == (64, 64) and textured.visual.uv.shape == (len(textured.vertices), 2)
