@@ -85,6 +85,16 @@ def test_update_recomputes_the_buffers_and_keeps_the_coverage(torus_atlas):
         atlas.update(np.full_like(mesh.positions, np.nan))
 
 
+def test_a_mesh_too_large_for_the_memory_budget_is_refused_before_anything_is_built(monkeypatch):
+    mesh = uvfeat.shapes.torus(2.0, 0.5, 320, 160)  # 102,400 faces: about 35 MiB of per-face tables
+    monkeypatch.setattr(uvfeat.atlas, "memory_budget", lambda: 20 << 20)
+    with pytest.raises(ResolutionTooLargeError, match=r"102,400 faces at resolution 64 need about \d+ MiB.*fewer faces"):
+        uvfeat.Atlas(mesh, 64)
+    assert "topology" not in mesh.__dict__  # refused before the topology was built
+    monkeypatch.setattr(uvfeat.atlas, "memory_budget", lambda: 200 << 20)
+    assert uvfeat.Atlas(mesh, 64).resolution == 64
+
+
 @pytest.mark.parametrize("resolution", [0, -5, 1.5, "big", True])
 def test_bad_resolutions_are_rejected(resolution):
     with pytest.raises(InvalidParameterError, match="positive integer"):
@@ -92,7 +102,7 @@ def test_bad_resolutions_are_rejected(resolution):
 
 
 def test_too_large_resolution_says_how_much_memory_it_needs():
-    with pytest.raises(ResolutionTooLargeError, match=r"needs about \d+ MiB"):
+    with pytest.raises(ResolutionTooLargeError, match=r"need about \d+ MiB"):
         uvfeat.Atlas(uvfeat.shapes.plane(), 30000)
     with pytest.raises(InvalidParameterError, match="precision"):
         uvfeat.Atlas(uvfeat.shapes.plane(), 64, precision="f64")

@@ -12,7 +12,7 @@ __all__ = [
     "Topology",
     "Atlas",
     "shape",
-    "buffer_bytes",
+    "atlas_bytes",
     "ComputeSettings",
     "FeatureMaps",
     "compute_settings",
@@ -30,8 +30,8 @@ __version__: str
 _Matrix = tuple[tuple[float, float], tuple[float, float]]
 _UV = Sequence[float]
 
-def buffer_bytes(resolution: int) -> int:
-    """Bytes the geometry buffers of a ``resolution``² atlas take."""
+def atlas_bytes(resolution: int, n_faces: int) -> int:
+    """Bytes an atlas of ``n_faces`` faces takes at ``resolution``² (buffers and per-face tables)."""
 
 def shape(
     name: str, sizes: list[float], counts: list[int], mirrored: bool = False

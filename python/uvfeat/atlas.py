@@ -110,11 +110,12 @@ class Atlas:
         if precision not in PRECISIONS:
             raise InvalidParameterError(f"precision must be one of {PRECISIONS}, got {precision!r}")
         budget = memory_budget()
-        needed = _core.buffer_bytes(resolution)
+        needed = _core.atlas_bytes(resolution, mesh.n_faces)
         if needed > budget:
             raise ResolutionTooLargeError(
-                f"resolution {resolution} needs about {needed >> 20} MiB of buffers, more than the "
-                f"{budget >> 20} MiB allowed (half of this machine's memory); choose a smaller resolution")
+                f"{mesh.n_faces:,} faces at resolution {resolution} need about {needed >> 20} MiB of buffers and "
+                f"per-face tables, more than the {budget >> 20} MiB allowed (half of this machine's memory); choose "
+                "a smaller resolution or fewer faces")
         self.mesh = mesh
         started = time.perf_counter()
         topology = mesh.topology

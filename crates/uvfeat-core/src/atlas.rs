@@ -143,6 +143,16 @@ pub fn buffer_bytes(resolution: usize) -> u64 {
     (resolution as u64).pow(2) * Coverage::BYTES_PER_TEXEL
 }
 
+/// Bytes per face of the topology, one frame and the face patches: measured on a 1M-face torus
+/// (topology 140, patches 128, frame 60; docs/RELIABILITY.md), rounded up.
+pub const BYTES_PER_FACE: u64 = 360;
+
+/// Bytes an atlas of a mesh of `n_faces` faces takes at `resolution`: its buffers and its
+/// per-face tables.
+pub fn atlas_bytes(resolution: usize, n_faces: usize) -> u64 {
+    buffer_bytes(resolution) + n_faces as u64 * BYTES_PER_FACE
+}
+
 fn check_resolution(options: &AtlasOptions) -> Result<()> {
     if options.resolution == 0 || options.resolution > MAX_RESOLUTION {
         return Err(UvfeatError::InvalidResolution { resolution: options.resolution, max: MAX_RESOLUTION });

@@ -30,10 +30,10 @@ fn matrix(m: DMat2) -> Matrix {
     [[m.x_axis.x, m.y_axis.x], [m.x_axis.y, m.y_axis.y]]
 }
 
-/// Bytes the coverage and one frame of buffers take at `resolution`.
+/// Bytes an atlas of `n_faces` faces takes at `resolution` (buffers and per-face tables).
 #[pyfunction]
-pub fn buffer_bytes(resolution: usize) -> u64 {
-    uvfeat_core::atlas::buffer_bytes(resolution)
+pub fn atlas_bytes(resolution: usize, n_faces: usize) -> u64 {
+    uvfeat_core::atlas::atlas_bytes(resolution, n_faces)
 }
 
 #[pymethods]

@@ -18,7 +18,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mesh::PyTopology>()?;
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
-    m.add_function(wrap_pyfunction!(atlas::buffer_bytes, m)?)?;
+    m.add_function(wrap_pyfunction!(atlas::atlas_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(settings::feature_names, m)?)?;
     m.add_function(wrap_pyfunction!(settings::default_options, m)?)?;
     m.add_function(wrap_pyfunction!(settings::paper_options, m)?)?;
