@@ -9,6 +9,7 @@ from numpy.typing import NDArray
 
 __all__ = [
     "__version__",
+    "SEVERAL_SHEETS",
     "Topology",
     "Atlas",
     "shape",
@@ -26,6 +27,7 @@ __all__ = [
 ]
 
 __version__: str
+SEVERAL_SHEETS: float
 
 _Matrix = tuple[tuple[float, float], tuple[float, float]]
 _UV = Sequence[float]
@@ -136,6 +138,8 @@ class FeatureMaps:
     def principal_directions(self) -> Optional[NDArray[np.float32]]: ...
     @property
     def fit_residual(self) -> Optional[NDArray[np.float32]]: ...
+    @property
+    def area_ratio(self) -> NDArray[np.float32]: ...
     def per_vertex_directions(self, atlas: Atlas) -> NDArray[np.float32]: ...
     @property
     def summary(self) -> dict[str, Any]: ...

@@ -33,6 +33,12 @@ class UVWarning(UserWarning):
     """The UVs were changed (normalised into [0, 1]) or look suspicious (overlaps, tiny charts)."""
 
 
+class NeighbourhoodWarning(UserWarning):
+    """Some per-vertex values come from neighbourhoods that are not what the radius asks for: cut
+    by a mesh border, partly missing, or holding more than one sheet of the surface (the radius is
+    wider than a thin part). ``FeatureMap.vertex_flags()`` says which vertices."""
+
+
 class MeshWarning(UserWarning):
     """The mesh was changed on load (polygons triangulated) or has defects uvfeat works around."""
 

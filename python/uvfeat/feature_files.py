@@ -142,6 +142,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
             "per_vertex_s": time_pv,
             "diagnostics": first.summary,
             "per_vertex_range": {n: [float(np.nanmin(v)), float(np.nanmax(v))] for n, v in per_vertex.items()},
+            "flagged_vertices": {n: int(v.sum()) for n, v in first.vertex_flags().items()},
         }
     if job.pictures:
         advance("3D pictures", done=False)

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _core
-from .errors import InvalidParameterError
+from .errors import InvalidParameterError, NeighbourhoodWarning
+from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
 from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
 
 @dataclass
@@ -31,6 +32,9 @@ class FeatureMap:
     ``principal_directions`` (``(W_c, W_c, 2, 3)``: unit ``d1`` of ``k1`` and ``d2`` of ``k2``, a
     line field whose sign is arbitrary) and ``fit_residual`` (``(W_c, W_c)``, RMS distance to the
     fit relative to r) are set (a leading ``n_radii`` axis for a stack); None otherwise.
+    ``area_ratio`` is each neighbourhood's surface area over ``pi r^2`` (about 1 for one sheet, 2
+    for both sides of a thin part); :meth:`vertex_flags` says which vertices have neighbourhoods
+    that are truncated, partly missing or hold several sheets.
     """
 
     name: str
@@ -42,6 +46,7 @@ class FeatureMap:
     standard_error: np.ndarray | None = None
     principal_directions: np.ndarray | None = None
     fit_residual: np.ndarray | None = None
+    area_ratio: np.ndarray | None = None
     summary: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
     _atlas: object = field(default=None, repr=False)
@@ -68,6 +73,16 @@ class FeatureMap:
             self._cache[query] = [maps.per_vertex(self._atlas._core, query) for maps in self._maps]
         values = [per_feature[self._index] for per_feature in self._cache[query]]
         return values[0] if not self.is_stack else np.stack(values)
+
+    def vertex_flags(self) -> dict[str, np.ndarray]:
+        """Vertices whose values come from neighbourhoods that are not what the radius asks for
+        (see :mod:`uvfeat.neighbourhood_flags`): ``{"truncated", "partly_missing",
+        "several_sheets"}`` -> ``(n_vertices,)`` bool (``(n_radii, n_vertices)`` for a stack)."""
+        if "flags" not in self._cache:  # shared by the features of one computation
+            self._cache["flags"] = [vertex_flags(self._atlas.mesh, texel_flags(m.n_valid, m.n_missing, m.n_border,
+                                                                               m.area_ratio)) for m in self._maps]
+        per_radius = self._cache["flags"]
+        return per_radius[0] if not self.is_stack else {n: np.stack([f[n] for f in per_radius]) for n in FLAGS}
 
     def per_vertex_directions(self) -> np.ndarray:
         """Principal directions of the fit at every vertex, ``(n_vertices, 2, 3)`` (``(n_radii,
@@ -148,6 +163,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
             standard_error=None if errors[0] is None else (np.stack(errors) if stack else errors[0]),
             principal_directions=None if opts["method"] != "fit" else gather(lambda m: m.principal_directions),
             fit_residual=None if opts["method"] != "fit" else gather(lambda m: m.fit_residual),
+            area_ratio=gather(lambda m: m.area_ratio),
             summary=all_maps[0].summary if not stack else [m.summary for m in all_maps],
             settings=described,
             _atlas=atlas,
@@ -155,4 +171,15 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
             _index=k,
             _cache=cache,
         )
+    _warn_about_flagged_vertices(out[names[0]], radius if stack else [radius])
     return out
+
+
+def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:
+    flags = feature.vertex_flags()
+    per_radius = [flags] if not feature.is_stack else [{n: f[k] for n, f in flags.items()} for k in range(len(radii))]
+    n_vertices = feature._atlas.mesh.n_vertices
+    texts = [text for r, f in zip(radii, per_radius)
+             for text in notes({n: int(v.sum()) for n, v in f.items()}, n_vertices, str(r))]
+    if texts:
+        warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)

@@ -52,6 +52,10 @@ pub struct PixelResult {
     pub directions: [[f32; 3]; 2],
     /// Relative RMS residual of the fit (NaN unless the curvature method is the fit).
     pub residual: f32,
+    /// Surface area of the neighbourhood over `pi r^2`: about 1 for one smooth sheet at any
+    /// curvature (a sphere's cap inside a ball holds exactly `pi r^2`), about 2 where the ball
+    /// holds both sides of a part thinner than `r`.
+    pub area_ratio: f32,
 }
 
 impl PixelResult {
@@ -64,6 +68,7 @@ impl PixelResult {
         clamped: false,
         directions: EMPTY_DIRECTIONS,
         residual: f32::NAN,
+        area_ratio: f32::NAN,
     };
 }
 
@@ -118,6 +123,7 @@ pub fn evaluate_point(
         clamped: estimates.clamped,
         directions: EMPTY_DIRECTIONS,
         residual: f32::NAN,
+        area_ratio: (stats.geodesic_disk.w / (std::f64::consts::PI * settings.radius * settings.radius)) as f32,
     };
     if let Some(fit) = fit {
         result.directions = [fit.d1, fit.d2].map(|d| d.as_vec3().to_array());

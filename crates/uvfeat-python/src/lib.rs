@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("SEVERAL_SHEETS", uvfeat_core::output::SEVERAL_SHEETS)?;
     m.add_class::<mesh::PyTopology>()?;
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;

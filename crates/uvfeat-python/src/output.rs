@@ -82,6 +82,13 @@ impl PyFeatureMaps {
         self.inner.fit_residual.as_ref().map(|r| self.map(py, r.clone())).transpose()
     }
 
+    /// (W_c, W_c) neighbourhood area over pi r^2 (about 1 for one sheet, 2 for both sides of a
+    /// thin part; NaN off the charts).
+    #[getter]
+    fn area_ratio<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.map(py, self.inner.area_ratio.clone())
+    }
+
     /// (n_vertices, 2, 3) principal directions of the fit, evaluated at every vertex.
     fn per_vertex_directions<'py>(&self, py: Python<'py>, atlas: &PyAtlas) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
         let (settings, core) = (&self.settings, atlas.core());
@@ -99,6 +106,7 @@ impl PyFeatureMaps {
         out.set_item("clamped_fraction", s.clamped_fraction)?;
         out.set_item("missing_fraction", s.missing_fraction)?;
         out.set_item("truncated_texels", s.truncated_texels)?;
+        out.set_item("several_sheet_texels", s.several_sheet_texels)?;
         out.set_item("mean_valid_samples", s.mean_valid)?;
         Ok(out)
     }

@@ -8,7 +8,8 @@ import warnings
 
 from .._core import __version__
 from ..writers import write_json
-from .common import add_feature_command_options, on_file, print_notes_and_outputs, radius_tag, steps
+from ..feature_files import radius_tag
+from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 
 def add_command(commands) -> None:

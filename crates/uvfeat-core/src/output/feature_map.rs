@@ -27,6 +27,10 @@ fn tiled_order(w: usize) -> Vec<usize> {
         .collect()
 }
 
+/// Neighbourhood area ratio above which a neighbourhood holds more than one sheet: one smooth sheet
+/// gives about 1 at any curvature, two sheets about 2, overlapping seam routes up to about 1.1.
+pub const SEVERAL_SHEETS: f32 = 1.5;
+
 /// Totals over a map, for reports.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MapSummary {
@@ -40,6 +44,9 @@ pub struct MapSummary {
     pub missing_fraction: f64,
     /// Texels whose neighbourhood was cut by a mesh border (some samples dropped there).
     pub truncated_texels: usize,
+    /// Texels whose neighbourhood holds more than one sheet of the surface (area ratio above
+    /// [`SEVERAL_SHEETS`]): the ball is wider than a thin part there.
+    pub several_sheet_texels: usize,
     /// Mean accepted samples per texel.
     pub mean_valid: f64,
 }
@@ -71,6 +78,8 @@ pub struct FeatureMaps {
     pub directions: Option<Vec<[[f32; 3]; 2]>>,
     /// Relative RMS residual of the fit per texel, with the curvature method `Fit`.
     pub fit_residual: Option<Vec<f32>>,
+    /// Neighbourhood area over `pi r^2` per texel (see [`PixelResult::area_ratio`]).
+    pub area_ratio: Vec<f32>,
     /// Totals.
     pub summary: MapSummary,
 }
@@ -126,6 +135,7 @@ impl FeatureMaps {
             clamped_fraction: evaluated.iter().filter(|p| p.clamped).count() as f64 / n,
             missing_fraction: evaluated.iter().map(|p| f64::from(p.counts.missing)).sum::<f64>() / drawn.max(1) as f64,
             truncated_texels: evaluated.iter().filter(|p| p.counts.border > 0).count(),
+            several_sheet_texels: evaluated.iter().filter(|p| p.area_ratio > SEVERAL_SHEETS).count(),
             mean_valid: evaluated.iter().map(|p| f64::from(p.counts.valid)).sum::<f64>() / n,
         };
         Self {
@@ -140,6 +150,7 @@ impl FeatureMaps {
             second_stage: pixels.iter().map(|p| p.second_stage).collect(),
             directions,
             fit_residual,
+            area_ratio: pick(&|p| p.area_ratio),
             summary,
         }
     }

@@ -5,6 +5,6 @@ mod feature_map;
 mod neighbourhood_tiles;
 mod per_vertex;
 
-pub use feature_map::{FeatureMaps, MapSummary};
+pub use feature_map::{FeatureMaps, MapSummary, SEVERAL_SHEETS};
 pub use neighbourhood_tiles::{neighbourhood_tile, NeighbourhoodTile};
 pub use per_vertex::{per_vertex, per_vertex_directions};

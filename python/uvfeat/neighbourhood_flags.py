@@ -1,0 +1,65 @@
+"""Which per-vertex values come from neighbourhoods that are not what the radius asks for, and the
+plain-language notes about them (issue 15):
+
+- **truncated**: the ball reaches past a mesh border, so part of the neighbourhood is missing
+  from the surface itself and the values are biased (normal near the border of an open mesh);
+- **partly missing**: more than :data:`MISSING_SHARE` of the samples could not be relocated
+  across seams (a broken atlas, or more seams than ``max_jumps``);
+- **several sheets**: the neighbourhood's area exceeds ``SEVERAL_SHEETS`` times ``pi r^2``, so
+  the ball holds more than one sheet of the surface (both sides of a part thinner than the
+  radius): the values mix the sheets. One smooth sheet holds about ``pi r^2`` at any curvature.
+
+A vertex is flagged when the texel under one of its corners is.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core
+
+#: Share of missing samples above which a neighbourhood counts as partly missing.
+MISSING_SHARE = 0.05
+
+#: Flag names, in report order.
+FLAGS = ("truncated", "partly_missing", "several_sheets")
+
+
+def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray,
+                area_ratio: np.ndarray) -> dict[str, np.ndarray]:
+    """Boolean maps of the three flags over the computation texture."""
+    drawn = n_valid.astype(np.int64) + n_missing + n_border
+    with np.errstate(invalid="ignore"):
+        return {"truncated": n_border > 0,
+                "partly_missing": n_missing > MISSING_SHARE * np.maximum(drawn, 1),
+                "several_sheets": area_ratio > _core.SEVERAL_SHEETS}
+
+
+def vertex_flags(mesh, flags: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """``(n_vertices,)`` booleans per flag: some corner of the vertex lies on a flagged texel."""
+    resolution = next(iter(flags.values())).shape[-1]
+    corner_uvs = mesh.uvs[mesh.uv_faces.reshape(-1)]
+    texel = np.clip((corner_uvs * resolution).astype(np.int64), 0, resolution - 1)
+    corners = mesh.faces.reshape(-1)
+    out = {}
+    for name, texels in flags.items():
+        flagged = np.zeros(mesh.n_vertices, dtype=bool)
+        np.logical_or.at(flagged, corners, texels[texel[:, 1], texel[:, 0]])
+        out[name] = flagged
+    return out
+
+
+def notes(counts: dict[str, int], n_vertices: int, radius: str) -> list[str]:
+    """A note per flag with flagged vertices, saying what it means and what to do."""
+    share = {name: f"{count:,} {'vertex' if count == 1 else 'vertices'} ({100 * count / max(n_vertices, 1):.1f} %)"
+             for name, count in counts.items()}
+    texts = {
+        "truncated": f"at r = {radius}, {share['truncated']} have neighbourhoods cut by a mesh border: their values "
+                     "are biased (a smaller radius shrinks the band)",
+        "partly_missing": f"at r = {radius}, {share['partly_missing']} have neighbourhoods with more than "
+                          f"{MISSING_SHARE:.0%} of the samples missing across seams: raise max_jumps or re-atlas",
+        "several_sheets": f"at r = {radius}, {share['several_sheets']} have neighbourhoods holding more than one "
+                          "sheet of the surface (the radius is wider than a thin part there): their values mix both "
+                          "sides; use a smaller radius",
+    }
+    return [texts[name] for name in FLAGS if counts.get(name)]

@@ -1,0 +1,67 @@
+"""Warnings the user can act on (issue 15): per-vertex values from neighbourhoods truncated by a
+mesh border, partly missing, or holding both sides of a part thinner than the radius are flagged,
+counted in summary.json and announced by a NeighbourhoodWarning."""
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+import trimesh
+
+import uvfeat
+from uvfeat import NeighbourhoodWarning
+from uvfeat.cli import main
+
+OPTIONS = dict(compute_resolution=64, samples=64)
+
+
+def compute(mesh, radius):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        maps = uvfeat.Atlas(mesh, 256).compute("mean_curvature", radius, **OPTIONS)
+    return maps["mean_curvature"], [w for w in caught if issubclass(w.category, NeighbourhoodWarning)]
+
+
+def test_a_ball_wider_than_a_tube_is_flagged_as_holding_several_sheets():
+    torus = uvfeat.shapes.torus(2.0, 0.5, 64, 32)  # tube diameter 1, bounding-box diagonal 7.1
+    narrow, quiet = compute(torus, 0.3)
+    assert not quiet and not narrow.vertex_flags()["several_sheets"].any()
+    assert np.nanmedian(narrow.area_ratio) == pytest.approx(1.0, abs=0.05)  # one sheet: pi r^2 at any curvature
+    wide, warned = compute(torus, 2.0)  # holds the tube whole: twice the area of a disk (measured 2.05)
+    flags = wide.vertex_flags()
+    assert flags["several_sheets"].mean() > 0.7
+    assert np.nanmedian(wide.area_ratio) > 1.8
+    assert len(warned) == 1 and "more than one sheet" in str(warned[0].message)
+
+
+def test_a_ball_past_the_border_is_flagged_as_truncated_near_the_border_only():
+    plane = uvfeat.shapes.plane(1.0, 32)
+    feature, warned = compute(plane, 0.1)
+    truncated = feature.vertex_flags()["truncated"]
+    x, y = plane.positions[:, 0], plane.positions[:, 1]
+    distance_to_border = np.minimum.reduce([x, y, 1 - x, 1 - y])
+    assert truncated[distance_to_border < 0.05].all()
+    assert not truncated[distance_to_border > 0.15].any()
+    assert len(warned) == 1 and "cut by a mesh border" in str(warned[0].message)
+
+
+def test_a_scale_stack_flags_each_radius_and_summary_json_counts_them(tmp_path):
+    torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
+    stack, _ = compute(torus, [0.3, 2.0])
+    flags = stack.vertex_flags()["several_sheets"]
+    assert flags.shape == (2, torus.n_vertices)
+    assert not flags[0].any() and flags[1].mean() > 0.7
+
+    path = tmp_path / "torus.obj"  # the command line reads a file
+    corners = torus.faces.reshape(-1)
+    uv = torus.uvs[torus.uv_faces.reshape(-1)]
+    trimesh.Trimesh(torus.positions[corners], np.arange(len(corners)).reshape(-1, 3),
+                    visual=trimesh.visual.TextureVisuals(uv=uv), process=False).export(path)
+    out = tmp_path / "out"
+    assert main(["compute", str(path), "--radius", "0.3,2.0", "--compute-resolution", "64", "--samples", "64",
+                 "--out", str(out)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["radii"]["0.3"]["flagged_vertices"]["several_sheets"] == 0
+    assert summary["radii"]["2.0"]["flagged_vertices"]["several_sheets"] > 0.7 * torus.n_vertices
+    assert any("more than one sheet" in w for w in summary["warnings"])
