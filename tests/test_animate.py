@@ -175,7 +175,7 @@ def test_cli_writes_frames_maps_and_a_gif(tmp_path):
             gif.seek(k)
             covered.append((np.asarray(gif.convert("RGB")).min(axis=-1) < 200).mean())
     assert len(covered) == 3 and 0.1 < covered[0] < covered[1] < covered[2], covered
-    import imageio_ffmpeg
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg", reason="MP4 needs the extra uvfeat[video]")
 
     reader = imageio_ffmpeg.read_frames(str(out / "mean_curvature_3d.mp4"))
     meta = next(reader)

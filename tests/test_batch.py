@@ -110,8 +110,35 @@ def test_a_48_frame_animation_on_two_workers_gives_the_serial_files(client, tmp_
                            "--frames-per-task", "10"]) == 0
     assert len(list((tmp_path / "cluster").glob("frame_*.npz"))) == 48
     assert_same_files(tmp_path / "cluster", tmp_path / "serial")
-    for picture in ["mean_curvature.gif", *(f"mean_curvature_{k:04d}.png" for k in (0, 47))]:
+    for picture in ["mean_curvature.gif", "mean_curvature_3d.gif", *(f"mean_curvature_{k:04d}.png" for k in (0, 47))]:
         assert (tmp_path / "cluster" / picture).read_bytes() == (tmp_path / "serial" / picture).read_bytes()
+
+
+def test_bad_cluster_settings_of_an_animation_are_refused_before_any_cluster_starts(tmp_path):
+    from uvfeat.batch.frames import animate_on_cluster
+
+    for settings in (dict(frames_per_task=0), dict(frames_per_task=-1), dict(workers=0)):
+        with pytest.raises(InvalidParameterError, match="positive"):
+            animate_on_cluster("mesh.glb", ["mean_curvature"], "2%", {}, str(tmp_path), 10, **settings)
+
+
+def test_pictures_when_asked_and_a_rerun_asking_for_them_recomputes(meshes, client, tmp_path):
+    inputs = tmp_path / "in"
+    inputs.mkdir()
+    for path in sorted(meshes.glob("torus_*.ply"))[:2]:
+        (inputs / path.name).write_bytes(path.read_bytes())
+    out = tmp_path / "run"
+
+    def run(**settings):
+        table = uvfeat.batch(inputs, "mean_curvature", "5%", client=client, out=out, **OPTIONS, **settings)
+        return sorted(table.column("status").to_pylist())
+
+    assert run() == ["computed"] * 2 and not list(out.rglob("*.png"))
+    assert run(pictures=True) == ["computed"] * 2  # finished, but without the pictures asked for now
+    for folder in (out / p.stem for p in inputs.iterdir()):
+        assert (folder / "mean_curvature_3d.png").exists() and (folder / "mean_curvature_r5pct.png").exists()
+    assert run(pictures=True) == ["skipped"] * 2
+    assert run() == ["skipped"] * 2
 
 
 class Interrupted(Exception):

@@ -158,3 +158,16 @@ def test_axes_limits_and_aspect():
     width, height = ax.get_window_extent().width, ax.get_window_extent().height
     assert all(abs(n - min(width, height)) <= 1 for n in image.get_array().shape[:2])
     plt.close(fig)
+
+
+def test_a_closed_mesh_wound_inwards_shows_its_near_side():
+    """Back faces of a closed mesh are culled by the winding: an inward-wound mesh (negative
+    volume) must still show the side facing the viewer, not the far one."""
+    from uvfeat.render import render_values
+
+    torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
+    height = torus.positions[:, 2]
+    outward = render_values(torus.positions, torus.faces, height, "viridis", -0.5, 0.5, view=(60.0, 0.0), up="z")
+    inward = render_values(torus.positions, torus.faces[:, ::-1], height, "viridis", -0.5, 0.5, view=(60.0, 0.0),
+                           up="z")
+    np.testing.assert_allclose(inward, outward, atol=1e-9)

@@ -12,7 +12,8 @@ from dataclasses import asdict, dataclass, field
 
 from ._core import __version__
 from .errors import InvalidParameterError
-from .options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, feature_names
+from . import _core
+from .options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -54,8 +55,17 @@ class FeatureJob:
     pictures: bool = field(default=True, compare=False)
 
     def __post_init__(self):
+        """Checks every setting, so that a bad one is one error before any mesh, not one per mesh."""
         object.__setattr__(self, "features", tuple(feature_names(self.features)))
         object.__setattr__(self, "radii", tuple(radius_list(self.radii)))
+        for radius in self.radii:
+            parse_radius(radius)
+        check_resolution(self.resolution)
+        if self.query not in CHOICES["query"]:
+            raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {self.query!r}")
+        _core.compute_settings(list(self.features), 1.0, {
+            "samples": self.samples, "compute_resolution": check_resolution(self.compute_resolution, "compute_resolution"),
+            "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling})
         if self.directions and self.method != "fit":
             raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
 
@@ -101,7 +111,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     options = {"query": job.query, "standard_error": job.standard_error, "method": job.method,
                "sampling": job.sampling}
     summary = {"uvfeat": __version__, "mesh": mesh.name, "source": source or {}, "warnings": list(load_notes),
-               "radii": {}, "settings": job.settings(),
+               "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
     advance("pre-processing + rasterising", done=False)
     atlas = Atlas(mesh, resolution=job.resolution, precision="f16" if job.paper_mode else "f32")

@@ -180,6 +180,7 @@ def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:
     per_radius = [flags] if not feature.is_stack else [{n: f[k] for n, f in flags.items()} for k in range(len(radii))]
     n_vertices = feature._atlas.mesh.n_vertices
     texts = [text for r, f in zip(radii, per_radius)
-             for text in notes({n: int(v.sum()) for n, v in f.items()}, n_vertices, str(r))]
+             for text in notes({n: int(v.sum()) for n, v in f.items()}, n_vertices,
+                               r if isinstance(r, str) else f"{r:.4g}")]
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)

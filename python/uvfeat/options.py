@@ -45,20 +45,28 @@ def feature_names(features) -> list[str]:
     return list(dict.fromkeys(features))
 
 
-def resolve_radius(radius, diagonal: float) -> float:
-    """A radius in object units from a number or a percentage string of the bounding-box diagonal
-    (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
+def parse_radius(radius) -> tuple[float, bool]:
+    """A radius's number and whether it is a percentage of the diagonal (``"2%"`` -> ``(2.0,
+    True)``); rejects what is not a positive, finite length."""
     if isinstance(radius, str):
         match = re.fullmatch(r"\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(%?)\s*", radius)
         if not match:
             raise InvalidParameterError(f"radius {radius!r}: give a length or a percentage of the diagonal like '2%'")
-        value = float(match.group(1)) * (diagonal / 100.0 if match.group(2) else 1.0)
+        value, percent = float(match.group(1)), bool(match.group(2))
     elif isinstance(radius, (int, float, np.floating, np.integer)) and not isinstance(radius, bool):
-        value = float(radius)
+        value, percent = float(radius), False
     else:
         raise InvalidParameterError(f"radius must be a number or a string like '2%', got {radius!r}")
     if not np.isfinite(value) or value <= 0:
         raise InvalidParameterError(f"radius must be a positive, finite length, got {radius!r}")
+    return value, percent
+
+
+def resolve_radius(radius, diagonal: float) -> float:
+    """A radius in object units from a number or a percentage string of the bounding-box diagonal
+    (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
+    number, percent = parse_radius(radius)
+    value = number * diagonal / 100.0 if percent else number
     if value > diagonal:
         raise InvalidParameterError(f"radius {value:g} is larger than the mesh (bounding-box diagonal {diagonal:g}); "
                                     "every neighbourhood would be the whole mesh")

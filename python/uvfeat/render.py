@@ -137,15 +137,23 @@ def is_closed(faces: np.ndarray) -> bool:
     return bool((counts == 2).all())
 
 
-def visible_faces(screen: np.ndarray, faces: np.ndarray) -> np.ndarray:
+def signed_volume(positions: np.ndarray, faces: np.ndarray) -> float:
+    """Volume enclosed by a closed mesh: positive when its faces turn counter-clockwise seen from
+    outside, negative when they face inwards."""
+    a, b, c = (positions[faces[:, k]] for k in range(3))
+    return float(np.einsum("ij,ij->", a, np.cross(b, c))) / 6.0
+
+
+def visible_faces(screen: np.ndarray, faces: np.ndarray, positions: np.ndarray) -> np.ndarray:
     """The faces that can be seen: all of an open mesh (its inside shows through the borders),
-    those turned towards the viewer of a closed one (half the rasterisation work)."""
+    those turned towards the viewer of a closed one (half the rasterisation work), whichever way
+    its faces are wound (the sign of its volume at ``positions`` says which)."""
     if not is_closed(faces):
         return faces
     a, b, c = (screen[faces[:, k]] for k in range(3))
     # Counter-clockwise from outside; the screen's y points down, so facing faces turn clockwise.
     area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
-    return faces[area <= 0]
+    return faces[area <= 0] if signed_volume(positions, faces) >= 0.0 else faces[area >= 0]
 
 
 def interpolate_values(fragments: Fragments, faces: np.ndarray, values: np.ndarray) -> np.ndarray:
@@ -184,7 +192,7 @@ def render_values(positions: np.ndarray, faces: np.ndarray, values: np.ndarray, 
     scale = pixels_per_unit * SUPERSAMPLING
     width, height = (max(1, int(np.ceil(float(e) * scale))) for e in (upper - lower))
     screen = np.column_stack([(p[:, 0] - lower[0]) * scale, (upper[1] - p[:, 1]) * scale, p[:, 2]])
-    faces = visible_faces(screen, faces)
+    faces = visible_faces(screen, faces, positions)
     fragments = rasterise(screen, faces, height, width)
     value = interpolate_values(fragments, faces, np.asarray(values, dtype=np.float64))
     colour = colour_values(value, cmap, low, high)

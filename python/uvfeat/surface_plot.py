@@ -77,9 +77,8 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     range over all radii unless ``low``/``high`` are given. ``views`` are names of :data:`VIEWS`
     or ``(elevation, azimuth)`` pairs, ``up`` the axis that points up. Runs without a display."""
     import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
     from .images import FEATURE_UNITS, colour_range
     from .render import UP_AXES, draw_vertex_values
@@ -95,8 +94,10 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     low = robust_low if low is None else float(low)
     high = robust_high if high is None else float(high)
     height = panel_inches * len(angles) + 0.8
-    fig, axes = plt.subplots(len(angles), len(rows), figsize=(panel_inches * len(rows) + 1.2, height), dpi=dpi,
-                             squeeze=False)
+    # A Figure of its own rather than pyplot's: the caller's backend and open figures stay as they were.
+    fig = Figure(figsize=(panel_inches * len(rows) + 1.2, height), dpi=dpi)
+    FigureCanvasAgg(fig)  # draws without a display (fig.canvas.buffer_rgba() gives the pixels)
+    axes = fig.subplots(len(angles), len(rows), squeeze=False)
     # Room at the top for the title and the radii, whatever the number of rows.
     fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=1.0 - 0.75 / height, wspace=0.05, hspace=0.05)
     unit = FEATURE_UNITS.get(feature, "")
@@ -116,10 +117,8 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
 
 
 def save_plot(path: str | os.PathLike, mesh, values, **options) -> None:
-    """:func:`plot` written to ``path`` and closed (for writing many pictures in a row)."""
-    import matplotlib.pyplot as plt
-
-    plt.close(plot(mesh, values, path=path, **options))
+    """:func:`plot` written to ``path`` (for writing many pictures in a row)."""
+    plot(mesh, values, path=path, **options)
 
 
 @dataclass

@@ -82,6 +82,8 @@ class Viewer:
         self.scale_index, self.picked, self.hovered = 0, None, None
         self.show_directions = False
         if not self.ps.is_initialized():
+            # polyscope would otherwise write imgui.ini and .polyscope.ini into the working folder
+            self.ps.set_use_prefs_file(False)
             try:
                 self.ps.init(backend)
             except Exception as error:  # polyscope raises bare RuntimeErrors (no display, no GL)
@@ -248,6 +250,7 @@ def view(mesh: Mesh, results: dict | None = None, *, feature: str | None = None,
     picks polyscope's (``"openGL3_egl"`` renders without a display); ``show=False`` returns the
     :class:`Viewer` without opening the window (for scripts and screenshots). Needs
     ``pip install 'uvfeat[view]'``."""
+    from .feature_files import radius_list
     from .features import FeatureMap
     from .options import feature_names
 
@@ -256,16 +259,23 @@ def view(mesh: Mesh, results: dict | None = None, *, feature: str | None = None,
 
         atlas = atlas or Atlas(mesh)
         names = feature_names(feature or "mean_curvature")
-        results = atlas.compute(names, list(np.atleast_1d(radius or ["1%", "4%", "16%"])), **(compute_options or {}))
+        results = atlas.compute(names, radius_list(radius or ["1%", "4%", "16%"]), **(compute_options or {}))
         feature = names[0]
     maps = [r for r in results.values() if isinstance(r, FeatureMap)]
     if maps:
         atlas = atlas or maps[0]._atlas
         settings = maps[0].settings
-        compute_options = compute_options or {k: settings[k] for k in ("samples", "compute_resolution", "seed", "method")
-                                              if k in settings}
+        # "Compute another radius" must compute as the given maps were computed
+        compute_options = compute_options or {k: settings[k] for k in _compute_options() if k in settings}
     viewer = Viewer(mesh, scales_from_results(mesh, results, radius), atlas=atlas,
                     compute_options=compute_options, feature=feature, backend=backend)
     if show:
         viewer.show()
     return viewer
+
+
+def _compute_options() -> tuple[str, ...]:
+    """The options of ``Atlas.compute`` a FeatureMap's settings record."""
+    from .options import DEFAULT_OPTIONS
+
+    return ("samples", "compute_resolution", "seed", "adaptive", *DEFAULT_OPTIONS)

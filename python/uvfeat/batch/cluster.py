@@ -16,6 +16,9 @@ from ..errors import ClusterError, InvalidParameterError, MissingDependencyError
 
 INSTALL_HINT = "pip install 'uvfeat[batch]'"
 
+#: How long a run on an existing scheduler waits for its first worker.
+WORKER_WAIT_S = 60
+
 
 def distributed():
     """The ``dask.distributed`` module, or a clear error saying how to install it."""
@@ -26,15 +29,23 @@ def distributed():
     return distributed
 
 
+def usable_cores() -> int:
+    """Cores this process may run on (its affinity, which containers and batch systems set)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
 def engine_threads(workers: int) -> int:
     """Rust threads per worker process: the cores split evenly between the workers."""
-    return max(1, (os.cpu_count() or 1) // workers)
+    return max(1, usable_cores() // workers)
 
 
 def check_workers(workers: int | None) -> int:
     """The local worker count: ``workers``, or one per core."""
     if workers is None:
-        return os.cpu_count() or 1
+        return usable_cores()
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise InvalidParameterError(f"workers must be a positive number of worker processes, got {workers!r}")
     return workers
@@ -63,9 +74,18 @@ def dask_client(client=None, scheduler: str | None = None, workers: int | None =
         except (OSError, TimeoutError) as exc:
             raise ClusterError(f"cannot reach the Dask scheduler at {scheduler!r}: {exc}") from exc
         with client:
+            try:  # a scheduler without workers would leave the run waiting at 0 % for ever
+                client.wait_for_workers(1, timeout=WORKER_WAIT_S)
+            except TimeoutError as exc:
+                raise ClusterError(f"the Dask scheduler at {scheduler!r} has no workers (waited "
+                                   f"{WORKER_WAIT_S} s); start some with `dask worker {scheduler}`") from exc
             yield client
         return
-    with local_cluster(workers) as cluster, dask.Client(cluster) as client:
+    try:
+        cluster = local_cluster(workers)
+    except (OSError, RuntimeError, TimeoutError) as exc:
+        raise ClusterError(f"cannot start a local Dask cluster of {check_workers(workers)} workers: {exc}") from exc
+    with cluster, dask.Client(cluster) as client:
         yield client
 
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 
 from ..animation.frame_files import animate_frames
-from ..errors import ClusterError, UvfeatError
-from .cluster import dask_client, run_tasks
+from ..errors import ClusterError, InvalidParameterError, UvfeatError
+from .cluster import check_workers, dask_client, distributed, run_tasks
 
 #: Chunks per worker thread: two keep the threads busy while the last chunks finish.
 CHUNKS_PER_THREAD = 2
@@ -22,8 +22,8 @@ def _lost(call: tuple, error: BaseException):
     if isinstance(error, UvfeatError):  # a bad frame: the same error as without a cluster
         raise error
     start, stop = call[-2:]
-    raise ClusterError(f"frames {start} to {stop - 1} were lost: the workers computing them died "
-                       f"({type(error).__name__}: {error})") from error
+    why = "the workers computing them died" if isinstance(error, distributed().KilledWorker) else "their task failed"
+    raise ClusterError(f"frames {start} to {stop - 1} were lost: {why} ({type(error).__name__}: {error})") from error
 
 
 def animate_on_cluster(mesh: str, features, radius, options: dict, out: str, total: int, *, client=None,
@@ -33,6 +33,11 @@ def animate_on_cluster(mesh: str, features, radius, options: dict, out: str, tot
     written to ``out`` by the cluster's workers; returns the frames' rows (index, time, timings)
     in order and the notes. ``on_start(client)`` before the first task, ``on_frames(n)`` as each
     chunk of ``n`` frames finishes."""
+    if frames_per_task is not None and (isinstance(frames_per_task, bool) or not isinstance(frames_per_task, int)
+                                        or frames_per_task < 1):
+        raise InvalidParameterError(f"frames per task must be a positive number, got {frames_per_task!r}")
+    if client is None and scheduler is None:
+        check_workers(workers)
     rows, notes = [], set()
     with dask_client(client, scheduler, workers) as running:
         if on_start:

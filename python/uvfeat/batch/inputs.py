@@ -50,5 +50,12 @@ def output_folders(paths: list[str]) -> dict[str, str]:
     root = os.path.commonpath([os.path.dirname(p) for p in paths])
     relative = {p: os.path.relpath(p, root) for p in paths}
     stems = [os.path.splitext(r)[0] for r in relative.values()]
-    return {p: (os.path.splitext(r)[0] if stems.count(os.path.splitext(r)[0]) == 1 else r.replace(".", "_"))
-            for p, r in relative.items()}
+    folders, taken = {}, set()
+    for p, r in relative.items():
+        folder = os.path.splitext(r)[0] if stems.count(os.path.splitext(r)[0]) == 1 else r.replace(".", "_")
+        unique, k = folder, 2
+        while unique in taken:  # x.obj and x.ply become x_obj, x_ply: a file x_obj.ply must not share one
+            unique, k = f"{folder}_{k}", k + 1
+        taken.add(unique)
+        folders[p] = unique
+    return folders

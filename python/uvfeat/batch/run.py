@@ -10,7 +10,7 @@ import os
 
 from ..errors import InvalidParameterError
 from ..feature_files import FeatureJob
-from .cluster import check_workers, dask_client, run_tasks
+from .cluster import check_workers, dask_client, distributed, run_tasks
 from .inputs import discover, output_folders
 from .table import write_run_table
 from .task import failed_row, finished_summary, mesh_task, source_record, summary_row
@@ -38,7 +38,8 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
     force : bool
         Recompute meshes an earlier run finished with the same settings (they are skipped otherwise).
     pictures : bool
-        Also write the ``.png`` map pictures.
+        Also write the pictures: the ``.png`` maps and the 3D views ``<feature>_3d.png`` (a rerun
+        with pictures recomputes meshes an earlier run finished without them).
     on_start : callable, optional
         ``on_start(n_meshes, client)`` before the first row (``client`` is None when every mesh
         is already finished).
@@ -90,5 +91,6 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
 
 def _lost(call: tuple, error: BaseException) -> dict:
     path, folder = call[:2]
-    return failed_row(path, folder, f"the workers computing it died ({type(error).__name__}: {error}); "
-                      "too large for a worker's memory?")
+    if isinstance(error, distributed().KilledWorker):
+        return failed_row(path, folder, f"the workers computing it died ({error}); too large for a worker's memory?")
+    return failed_row(path, folder, error)  # the task itself failed on its worker: its own error

@@ -18,13 +18,15 @@ def source_record(path: str) -> dict:
 
 
 def finished_summary(folder: str, job: FeatureJob, source: dict) -> dict | None:
-    """The summary of an earlier run that wrote this mesh's files with the same settings, if any."""
+    """The summary of an earlier run that wrote this mesh's files with the same settings (and the
+    pictures, when asked for), if any."""
     try:
         with open(os.path.join(folder, SUMMARY)) as f:
             summary = json.load(f)
     except (OSError, ValueError):
         return None
-    return summary if summary.get("settings") == job.settings() and summary.get("source") == source else None
+    same = summary.get("settings") == job.settings() and summary.get("source") == source
+    return summary if same and (summary.get("pictures") or not job.pictures) else None
 
 
 def summary_row(path: str, folder: str, summary: dict, status: str) -> dict:

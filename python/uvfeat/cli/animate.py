@@ -57,7 +57,7 @@ def run(args) -> int:
     notes += frames.atlas.warnings()
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
     with throughput(out, f"{frames.mesh.name}: {', '.join(frames.features)}", total, "frames/s") as advance:
-        if args.scheduler or args.workers:
+        if args.scheduler or args.workers is not None or args.frames_per_task is not None:
             from ..batch.frames import animate_on_cluster
 
             # Workers may run elsewhere, in another folder: they get absolute paths

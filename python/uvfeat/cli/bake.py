@@ -8,7 +8,8 @@ import warnings
 
 from .._core import __version__
 from ..writers import write_json
-from ..feature_files import radius_tag
+from ..extras import require
+from ..feature_files import radius_list, radius_tag
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 
@@ -29,8 +30,10 @@ def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> d
     from ..bake import bake_feature, write_quality_ply
     from ..options import feature_names
 
+    require("scipy.ndimage", "dilating texture gutters")  # before minutes of computing, not after
+    require("tifffile", "writing float TIFF")
     names = feature_names(args.feature)
-    radii = [r.strip() for r in args.radius.split(",") if r.strip()]
+    radii = radius_list(args.radius)
     os.makedirs(args.out, exist_ok=True)
     summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
                "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,

@@ -28,7 +28,7 @@ def add_command(commands) -> None:
     add_computation_options(parser)
     add_cluster_options(parser)
     parser.add_argument("--force", action="store_true", help="recompute meshes an earlier run finished")
-    parser.add_argument("--pictures", action="store_true", help="also write the .png map pictures")
+    parser.add_argument("--pictures", action="store_true", help="also write the pictures: .png maps and the 3D views <feature>_3d.png")
     parser.set_defaults(handler=run, out="uvfeat-out/batch")
 
 

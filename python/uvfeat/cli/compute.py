@@ -20,7 +20,7 @@ def add_command(commands) -> None:
 def write_features(mesh, args, console, load_notes: list[str], started: float) -> dict:
     """Computes the features at every radius and writes per-vertex files, maps and a summary."""
     job = FeatureJob.from_args(args)
-    with steps(console, 2 + 3 * len(job.radii)) as advance:
+    with steps(console, 2 + 2 * len(job.radii)) as advance:
         atlas, summary = write_feature_files(mesh, job, args.out, load_notes, started, advance)
     console.print(atlas.summary())
     for radius, info in summary["radii"].items():

@@ -22,10 +22,13 @@ def open_viewer(mesh, args, console, load_notes: list[str], started: float) -> N
     from PIL import Image
 
     from ..atlas import Atlas
+    from ..extras import require
+    from ..feature_files import radius_list
     from ..options import feature_names
     from ..viewer import HEADLESS, view
 
-    radii = [r.strip() for r in args.radius.split(",") if r.strip()]
+    require("polyscope", "the viewer")  # before minutes of computing, not after
+    radii = radius_list(args.radius)
     options = {"samples": args.samples, "compute_resolution": args.compute_resolution, "seed": args.seed,
                "method": args.method, "sampling": args.sampling, "query": args.query}
     with steps(console, 2) as advance:
