@@ -36,15 +36,17 @@ def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray
 
 
 def vertex_flags(mesh, flags: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """``(n_vertices,)`` booleans per flag: some corner of the vertex lies on a flagged texel."""
+    """``(n_vertices,)`` booleans per flag: some corner of the vertex lies on a flagged texel.
+    Looked up once per UV vertex, then spread over the corners as booleans (a million faces: a few
+    MB, no per-corner coordinates)."""
     resolution = next(iter(flags.values())).shape[-1]
-    corner_uvs = mesh.uvs[mesh.uv_faces.reshape(-1)]
-    texel = np.clip((corner_uvs * resolution).astype(np.int64), 0, resolution - 1)
-    corners = mesh.faces.reshape(-1)
+    texel = np.clip((mesh.uvs * resolution).astype(np.int32), 0, resolution - 1)
+    flat = texel[:, 1] * resolution + texel[:, 0]
+    corners, uv_corners = mesh.faces.reshape(-1), mesh.uv_faces.reshape(-1)
     out = {}
     for name, texels in flags.items():
         flagged = np.zeros(mesh.n_vertices, dtype=bool)
-        np.logical_or.at(flagged, corners, texels[texel[:, 1], texel[:, 0]])
+        flagged[corners[texels.reshape(-1)[flat][uv_corners]]] = True
         out[name] = flagged
     return out
 
