@@ -86,7 +86,7 @@ def test_update_recomputes_the_buffers_and_keeps_the_coverage(torus_atlas):
 
 
 def test_a_mesh_too_large_for_the_memory_budget_is_refused_before_anything_is_built(monkeypatch):
-    mesh = uvfeat.shapes.torus(2.0, 0.5, 320, 160)  # 102,400 faces: about 35 MiB of per-face tables
+    mesh = uvfeat.shapes.torus(2.0, 0.5, 320, 160)  # 102,400 faces: about 31 MiB of per-face tables
     monkeypatch.setattr(uvfeat.atlas, "memory_budget", lambda: 20 << 20)
     with pytest.raises(ResolutionTooLargeError, match=r"102,400 faces at resolution 64 need about \d+ MiB.*fewer faces"):
         uvfeat.Atlas(mesh, 64)

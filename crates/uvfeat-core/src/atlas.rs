@@ -144,8 +144,8 @@ pub fn buffer_bytes(resolution: usize) -> u64 {
 }
 
 /// Bytes per face of the topology, one frame and the face patches: measured on a 1M-face torus
-/// (topology 140, patches 128, frame 60; docs/RELIABILITY.md), rounded up.
-pub const BYTES_PER_FACE: u64 = 360;
+/// (topology 95, patches 128, frame 60; docs/RELIABILITY.md), rounded up.
+pub const BYTES_PER_FACE: u64 = 320;
 
 /// Bytes an atlas of a mesh of `n_faces` faces takes at `resolution`: its buffers and its
 /// per-face tables.

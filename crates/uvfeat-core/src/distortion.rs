@@ -51,7 +51,7 @@ pub fn corner_metrics(topology: &Topology, face_metric: impl Fn(usize) -> Option
         let Some(inverse) = face_metric(f).and_then(invert) else {
             continue;
         };
-        let uv = &topology.corner_uvs[f];
+        let uv = &topology.corner_uvs(f);
         let uv_area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs();
         // Object area: uv area times sqrt(det) = uv area / sqrt(det of the inverse).
         let weight = uv_area / (inverse[0] * inverse[2] - inverse[1] * inverse[1]).sqrt();

@@ -177,7 +177,7 @@ impl Frame {
         }
         let corners = topology.faces[face];
         let gather = |values: &[DVec3]| corners.map(|v| values[v as usize]);
-        FaceMap::new(gather(&self.positions), gather(&self.normals), topology.corner_uvs[face])
+        FaceMap::new(gather(&self.positions), gather(&self.normals), topology.corner_uvs(face))
     }
 
     /// The sampler's metric at `uv` in `face`: the face's own metric, unless it is far more

@@ -94,16 +94,16 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
     classes
 }
 
-/// UV of geometric vertex `vertex` in `face` (the vertex must be a corner of the face).
-pub(crate) fn uv_of_vertex(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], face: u32, vertex: u32) -> DVec2 {
-    let corner = faces[face as usize].iter().position(|&v| v == vertex).unwrap_or(0);
-    corner_uvs[face as usize][corner]
+/// UV of geometric vertex `vertex` in the face `tri` with corner UVs `corners` (the vertex must be
+/// a corner of the face).
+pub(crate) fn uv_of_vertex(tri: [u32; 3], corners: [DVec2; 3], vertex: u32) -> DVec2 {
+    corners[tri.iter().position(|&v| v == vertex).unwrap_or(0)]
 }
 
 fn uv_continuous(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], x: FaceSide, y: FaceSide) -> bool {
-    let tri = faces[x.face as usize];
-    let (a, b) = (tri[x.local as usize], tri[(x.local as usize + 1) % 3]);
-    [a, b].iter().all(|&v| uv_of_vertex(faces, corner_uvs, x.face, v) == uv_of_vertex(faces, corner_uvs, y.face, v))
+    let (fx, fy) = (x.face as usize, y.face as usize);
+    let (a, b) = (faces[fx][x.local as usize], faces[fx][(x.local as usize + 1) % 3]);
+    [a, b].iter().all(|&v| uv_of_vertex(faces[fx], corner_uvs[fx], v) == uv_of_vertex(faces[fy], corner_uvs[fy], v))
 }
 
 #[cfg(test)]

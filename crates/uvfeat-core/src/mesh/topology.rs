@@ -4,7 +4,7 @@
 use super::adjacency::{face_links, walk_faces, WalkFace};
 use super::charts::chart_ids;
 use super::corners::corner_groups;
-use super::edges::{classify_edges, EdgeCounts};
+use super::edges::{classify_edges, uv_of_vertex, EdgeCounts};
 use super::sides::{boundary_sides, BoundarySide};
 use super::weld::weld_positions;
 use super::{uv_is_degenerate, uv_signed_area2, TriangleMesh};
@@ -36,8 +36,6 @@ pub struct Topology {
     pub representative: Vec<u32>,
     /// (n_faces) faces as geometric vertex ids.
     pub faces: Vec<[u32; 3]>,
-    /// (n_faces) UV of each corner.
-    pub corner_uvs: Vec<[DVec2; 3]>,
     /// (n_faces) chart id, `-1` for faces with a degenerate UV triangle.
     pub face_chart: Vec<i32>,
     /// Number of charts.
@@ -45,7 +43,7 @@ pub struct Topology {
     /// Every chart-boundary side.
     pub sides: Vec<BoundarySide>,
     /// (n_faces) corner UVs and what lies across each edge of each face (for the exact triangle
-    /// walk).
+    /// walk): the one home of the corner UVs (see [`Topology::corner_uvs`]).
     pub walk_faces: Vec<WalkFace>,
     /// (n_faces) atlas corner of each face corner (`NO_CORNER` for faces without a chart).
     pub corner_groups: Vec<[u32; 3]>,
@@ -100,7 +98,6 @@ impl Topology {
             vertex_ids,
             representative,
             faces,
-            corner_uvs,
             face_chart,
             n_charts,
             sides,
@@ -135,7 +132,18 @@ impl Topology {
     pub fn side_endpoints(&self, side: &BoundarySide) -> ([u32; 2], [DVec2; 2]) {
         let (f, k) = (side.face as usize, side.local as usize);
         let tri = self.faces[f];
-        let uv = self.corner_uvs[f];
+        let uv = self.corner_uvs(f);
         ([tri[k], tri[(k + 1) % 3]], [uv[k], uv[(k + 1) % 3]])
+    }
+
+    /// The UV of each corner of face `f` (kept once, in the walk records: 48 bytes per face).
+    #[inline]
+    pub fn corner_uvs(&self, f: usize) -> [DVec2; 3] {
+        self.walk_faces[f].corners
+    }
+
+    /// UV of geometric vertex `vertex` in `face` (the vertex must be a corner of the face).
+    pub(crate) fn uv_of_vertex(&self, face: u32, vertex: u32) -> DVec2 {
+        uv_of_vertex(self.faces[face as usize], self.corner_uvs(face as usize), vertex)
     }
 }

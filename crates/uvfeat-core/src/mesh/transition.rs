@@ -1,7 +1,7 @@
 //! Seam transition maps (DESIGN.md §1.2.5, decision A6): the affine map that carries a parametric
 //! point of one chart across a seam into the chart on the other side.
 
-use super::edges::{uv_of_vertex, SideKind};
+use super::edges::SideKind;
 use super::{uv_signed_area2, Topology};
 use glam::{DMat2, DVec2};
 use rayon::prelude::*;
@@ -47,8 +47,8 @@ pub fn seam_maps(topology: &Topology, metric: impl Fn(u32, usize) -> [f64; 3] + 
                 return None;
             };
             let ([a, b], [ua_a, ua_b]) = topology.side_endpoints(side);
-            let ub_a = uv_of_vertex(&topology.faces, &topology.corner_uvs, other_face, a);
-            let ub_b = uv_of_vertex(&topology.faces, &topology.corner_uvs, other_face, b);
+            let ub_a = topology.uv_of_vertex(other_face, a);
+            let ub_b = topology.uv_of_vertex(other_face, b);
             let m = hinge_map(topology, &metric, side.face, other_face, a, b)
                 .unwrap_or_else(|| similarity_map(topology, side.face, other_face, ub_b - ub_a, ua_b - ua_a));
             Some(SeamMap { origin_from: ua_a, origin_to: ub_a, m })
@@ -68,7 +68,7 @@ fn hinge_map(
     // (`inwards`) or away from it.
     let frame = |face: u32, inwards: bool| -> Option<(DVec2, DVec2)> {
         let tri = topology.faces[face as usize];
-        let uv = topology.corner_uvs[face as usize];
+        let uv = topology.corner_uvs(face as usize);
         let corner = |v: u32| tri.iter().position(|&x| x == v);
         let (ka, kb) = (corner(a)?, corner(b)?);
         let third = 3 - ka - kb;
@@ -110,7 +110,7 @@ fn similarity_map(topology: &Topology, face_a: u32, face_b: u32, edge_b: DVec2, 
     let (c, s) =
         ((edge_b.x * edge_a.x + edge_b.y * edge_a.y) / len2, (edge_b.y * edge_a.x - edge_b.x * edge_a.y) / len2);
     let rotate_scale = DMat2::from_cols(DVec2::new(c, s), DVec2::new(-s, c));
-    let orientation = |f: u32| uv_signed_area2(&topology.corner_uvs[f as usize]).signum();
+    let orientation = |f: u32| uv_signed_area2(&topology.corner_uvs(f as usize)).signum();
     if orientation(face_a) == orientation(face_b) {
         return rotate_scale;
     }

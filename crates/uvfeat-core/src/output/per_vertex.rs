@@ -14,7 +14,8 @@ use rayon::prelude::*;
 fn corners(atlas: &Atlas) -> Vec<Vec<(DVec2, i32)>> {
     let topology = &atlas.topology;
     let mut out = vec![Vec::new(); topology.n_geometric()];
-    for ((tri, uv), &chart) in topology.faces.iter().zip(&topology.corner_uvs).zip(&topology.face_chart) {
+    for ((tri, walk), &chart) in topology.faces.iter().zip(&topology.walk_faces).zip(&topology.face_chart) {
+        let uv = &walk.corners;
         if chart < 0 {
             continue;
         }

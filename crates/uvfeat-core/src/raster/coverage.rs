@@ -89,7 +89,7 @@ impl Coverage {
             .into_par_iter()
             .filter(|&f| topology.face_chart[f] >= 0)
             .fold(Vec::new, |mut out, f| {
-                rasterise_triangle(f as u32, topology.corner_uvs[f], resolution, &mut out);
+                rasterise_triangle(f as u32, topology.corner_uvs(f), resolution, &mut out);
                 out
             })
             .flatten_iter()

@@ -136,7 +136,7 @@ mod tests {
         let mut worst: f64 = 0.0;
         for f in 0..topology.faces.len() {
             let map = frame.face_map(&topology, f as u32).unwrap();
-            let uv = topology.corner_uvs[f];
+            let uv = topology.corner_uvs(f);
             for (b1, b2) in [(0.2, 0.3), (0.0, 0.0), (0.6, 0.5), (-0.1, 0.4)] {
                 let at = uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2;
                 let (position, normal) = evaluate(&patches, f as u32, at);

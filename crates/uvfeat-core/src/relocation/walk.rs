@@ -100,7 +100,7 @@ pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
     let texel = atlas.nearest_texel(uv, |t| coverage.chart[t] == chart)?;
     let face = u32::try_from(coverage.face[texel]).ok()?;
     let topology = &atlas.topology;
-    let corners = topology.corner_uvs[face as usize];
+    let corners = topology.corner_uvs(face as usize);
     let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
     match walk_in_chart(atlas, face, None, centroid, uv, None) {
         Stop::Arrived { face } => Some(Home { face, point: uv }),

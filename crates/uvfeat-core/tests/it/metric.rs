@@ -44,7 +44,7 @@ fn affine_plane_distortion_is_exact_including_the_angle() {
 /// analytic form is taken at the centroid's u and at the v of the face's u-parallel edge.
 fn worst_metric_errors(atlas: &Atlas, analytic: impl Fn(f64, f64) -> (f64, f64)) -> (f64, f64) {
     let mut worst = (0.0f64, 0.0f64);
-    for (face, uv) in atlas.topology.corner_uvs.iter().enumerate() {
+    for (face, uv) in atlas.topology.walk_faces.iter().map(|w| w.corners).enumerate() {
         let Some(jac) = atlas.frame.face_map(&atlas.topology, face as u32).map(|m| m.jacobian) else {
             continue;
         };

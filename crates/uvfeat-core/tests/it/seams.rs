@@ -144,7 +144,7 @@ fn the_walk_crosses_charts_smaller_than_a_texel_exactly() {
     let atlas = atlas(&exploded_plane(40), 64);
     let topology = &atlas.topology;
     let face = 40 * 20 * 2 + 2 * 20; // a face near the middle
-    let corners = topology.corner_uvs[face];
+    let corners = topology.corner_uvs(face);
     let start = (corners[0] + corners[1] + corners[2]) / 3.0;
     let chart = topology.face_chart[face];
     let p = surface_point_of(&atlas, start, chart);
