@@ -7,12 +7,12 @@ from __future__ import annotations
 
 import os
 import time
-import warnings
 from dataclasses import asdict, dataclass, field
 
+from . import _core
 from ._core import __version__
 from .errors import InvalidParameterError
-from . import _core
+from .notes import recorded_notes
 from .options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
 from .writers import write_json, write_per_vertex
 
@@ -90,10 +90,9 @@ def load_with_notes(path: str, uv: str, resolution: int, strict_uv: bool):
     """The mesh at ``path`` loaded with these UV options, and its warnings as notes."""
     from .io import load
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    with recorded_notes() as notes:
         mesh = load(path, uv=uv, resolution=resolution, normalize_uv=not strict_uv)
-    return mesh, [str(w.message) for w in caught]
+    return mesh, notes
 
 
 def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], started: float,
@@ -122,12 +121,11 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     on_mesh: dict[str, list] = {name: [] for name in job.features}
     for radius in job.radii:
         advance(f"features at r = {radius}", done=False)
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
+        with recorded_notes() as notes:
             maps = atlas.compute(list(job.features), radius, samples=job.samples,
                                  compute_resolution=job.compute_resolution, adaptive=job.adaptive, seed=job.seed,
                                  paper_mode=job.paper_mode, **options)
-        summary["warnings"] += sorted({str(w.message) for w in caught})
+        summary["warnings"] += notes
         first = next(iter(maps.values()))
         advance(f"per-vertex values at r = {radius}")
         started_pv = time.perf_counter()

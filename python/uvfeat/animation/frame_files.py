@@ -7,10 +7,10 @@ colour range taken from the first frame, so frames computed apart still compare.
 from __future__ import annotations
 
 import os
-import warnings
 
 import numpy as np
 
+from ..notes import recorded_notes
 from .animate import Animation, animate
 
 
@@ -19,10 +19,9 @@ def open_animation(mesh: str, features, radius, frames: list[str] | None = None,
     mesh files), and the warnings it gave as notes."""
     if frames and len(frames) == 1 and frames[0].endswith(".npy"):
         frames = np.load(frames[0])
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    with recorded_notes() as notes:
         animation = animate(mesh, features, radius, frames=frames, **options)
-    return animation, sorted({str(w.message) for w in caught})
+    return animation, notes
 
 
 def map_path(out: str, name: str, index: int, extension: str) -> str:

@@ -4,12 +4,12 @@ tools open (MeshLab, Blender, glTF viewers, texture painters)."""
 from __future__ import annotations
 
 import os
-import warnings
 
 from .._core import __version__
-from ..writers import write_json
 from ..extras import require
 from ..feature_files import radius_list, radius_tag
+from ..notes import recorded_notes
+from ..writers import write_json
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 
@@ -44,11 +44,10 @@ def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> d
         summary["warnings"] += atlas.warnings()
         for radius in radii:
             advance(f"features at r = {radius}")
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
+            with recorded_notes() as notes:
                 maps = atlas.compute(names, radius, samples=args.samples, compute_resolution=args.compute_resolution,
                                      seed=args.seed, method=args.method, sampling=args.sampling, query=args.query)
-            summary["warnings"] += sorted({str(w.message) for w in caught})
+            summary["warnings"] += notes
             advance(f"bakes at r = {radius}")
             tag = radius_tag(radius)
             per_vertex = {name: m.per_vertex() for name, m in maps.items()}

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import json
 import os
-import warnings
 
+from ..notes import recorded_notes
 from ..writers import write_json
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
@@ -38,15 +38,14 @@ def write_comparison(mesh, args, console, load_notes: list[str], started: float)
 
     with steps(console, 2) as advance:
         advance("reference + parametric", done=False)
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
+        with recorded_notes() as notes:
             result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
                              compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
                              seed=args.seed, query=args.query, method=args.method, sampling=args.sampling,
                              truth_levels=args.truth_levels)
         advance("pictures")
         summary = result.to_dict()
-        summary["warnings"] = load_notes + sorted({str(w.message) for w in caught})
+        summary["warnings"] = load_notes + notes
         if not args.no_pictures:
             pictures = save_comparison_pictures(result, args.out)
             summary["pictures"] = {k: os.path.basename(v) for k, v in pictures.items()}
