@@ -202,6 +202,25 @@ pub fn relative_standard_error(feature: Feature, stats: &NeighbourhoodStats, set
     }
 }
 
+/// As [`relative_standard_error`] when the curvatures come from the quadric fit: its own
+/// standard errors for the curvature features (`H`'s for k1, k2, curvedness and the shape index,
+/// whose errors follow it), the integral sums' for the others; NaN where the fit failed.
+pub fn fit_relative_error(
+    feature: Feature,
+    fit: Option<&QuadricFit>,
+    stats: &NeighbourhoodStats,
+    settings: &EstimatorSettings,
+) -> f64 {
+    let r = settings.radius;
+    match feature {
+        Feature::GaussianCurvature => fit.map_or(f64::NAN, |f| f.gaussian_error * r * r),
+        Feature::MeanCurvature | Feature::K1 | Feature::K2 | Feature::Curvedness | Feature::ShapeIndex => {
+            fit.map_or(f64::NAN, |f| f.mean_error * r)
+        }
+        _ => relative_standard_error(feature, stats, settings),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

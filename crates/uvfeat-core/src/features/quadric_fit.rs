@@ -54,6 +54,16 @@ pub struct QuadricFit {
     /// Weighted RMS distance of the samples to the fitted surface, relative to `r`: a quality
     /// measure (near 0 on smooth surfaces well inside the ball, large on creases and noise).
     pub residual: f64,
+    /// Standard errors of `mean` and `gaussian` over random draws of the samples: the
+    /// heteroscedasticity-consistent ("sandwich") covariance `A^-1 (sum (w e)^2 x x^T) A^-1` of
+    /// the weighted least squares, `A = sum w x x^T`, carried to H and K by their gradients at the
+    /// fitted frame (where the tilt vanishes, `H = -(a + c)/2`, `K = ac - b^2`). It treats the
+    /// samples as independent, so a stratified pattern's error is overstated, as the integral
+    /// estimators' own errors are (DESIGN.md §1.8): adaptive sampling compares it to `tau`. NaN
+    /// unless asked for (one more pass over the samples).
+    pub mean_error: f64,
+    /// See `mean_error`.
+    pub gaussian_error: f64,
 }
 
 /// One sample in a local frame, in units of `r`.
@@ -96,6 +106,12 @@ impl Frame {
 
 /// Weighted least squares of the model in `frame`: `(c0, c1, c2, a, b, c)` in units of `r`.
 fn solve_in(frame: &Frame, samples: &[Sample], radius: f64) -> Option<[f64; UNKNOWNS]> {
+    let (ata, atb) = normal_equations(frame, samples, radius);
+    solve_cholesky(ata, atb)
+}
+
+/// `A = sum w x x^T` (lower triangle) and `sum w x z` of the model in `frame`.
+fn normal_equations(frame: &Frame, samples: &[Sample], radius: f64) -> ([[f64; UNKNOWNS]; UNKNOWNS], [f64; UNKNOWNS]) {
     let mut ata = [[0.0; UNKNOWNS]; UNKNOWNS];
     let mut atb = [0.0; UNKNOWNS];
     for s in samples {
@@ -108,12 +124,40 @@ fn solve_in(frame: &Frame, samples: &[Sample], radius: f64) -> Option<[f64; UNKN
             }
         }
     }
-    solve_cholesky(ata, atb)
+    (ata, atb)
+}
+
+/// Standard errors (units of `1/r` and `1/r^2`) of `H` and `K` of `coef` fitted in `frame`: see
+/// [`QuadricFit::mean_error`].
+fn curvature_errors(frame: &Frame, samples: &[Sample], radius: f64, coef: &[f64; UNKNOWNS]) -> (f64, f64) {
+    let (ata, _) = normal_equations(frame, samples, radius);
+    let [_, _, _, a, b, c] = *coef;
+    let gradients = [[0.0, 0.0, 0.0, -0.5, 0.0, -0.5], [0.0, 0.0, 0.0, c, -2.0 * b, a]];
+    let errors = gradients.map(|g| {
+        // Var(g . coef) = u^T M u with u = A^-1 g and M = sum (w e)^2 x x^T.
+        let Some(u) = solve_cholesky(ata, g) else { return f64::NAN };
+        let variance: f64 = samples
+            .iter()
+            .map(|s| {
+                let q = Local::new((s.position - frame.origin) / radius, frame);
+                let projected: f64 = q.basis.iter().zip(&u).map(|(x, u)| x * u).sum();
+                (s.area * (q.z - q.height(coef)) * projected).powi(2)
+            })
+            .sum();
+        variance.sqrt()
+    });
+    (errors[0] / radius, errors[1] / (radius * radius))
 }
 
 /// Fits osculating circles to `samples` around `centre` with normal `normal` (unit) at scale
 /// `radius`; `None` when the samples do not determine the fit.
-pub fn quadric_fit(centre: DVec3, normal: DVec3, samples: &[Sample], radius: f64) -> Option<QuadricFit> {
+pub fn quadric_fit(
+    centre: DVec3,
+    normal: DVec3,
+    samples: &[Sample],
+    radius: f64,
+    with_errors: bool,
+) -> Option<QuadricFit> {
     let first = Frame::new(centre, normal);
     let [c0, c1, c2, ..] = solve_in(&first, samples, radius)?;
     let fitted = Frame::new(centre + c0 * radius * normal, (normal - c1 * first.t1 - c2 * first.t2).normalize());
@@ -125,6 +169,8 @@ pub fn quadric_fit(centre: DVec3, normal: DVec3, samples: &[Sample], radius: f64
         sum_w += s.area;
         sum_we2 += s.area * e * e;
     }
+    let (mean_error, gaussian_error) =
+        if with_errors { curvature_errors(&fitted, samples, radius, &coef) } else { (f64::NAN, f64::NAN) };
     let [_, c1, c2, a, b, c] = coef;
     let (a, b, c) = (a / radius, b / radius, c / radius);
     let Frame { t1, t2, normal, .. } = fitted;
@@ -155,6 +201,8 @@ pub fn quadric_fit(centre: DVec3, normal: DVec3, samples: &[Sample], radius: f64
         d1,
         d2: n_fit.cross(d1),
         residual: (sum_we2 / sum_w).sqrt(),
+        mean_error,
+        gaussian_error,
     })
 }
 
@@ -237,7 +285,7 @@ mod tests {
         let frame = DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1);
         for r in [0.1, 0.5, 0.95] {
             let samples = circle_samples(frame, DVec3::ZERO, [-1.0, 0.0, -1.0], r);
-            let fit = quadric_fit(DVec3::ZERO, frame * DVec3::Z, &samples, r).unwrap();
+            let fit = quadric_fit(DVec3::ZERO, frame * DVec3::Z, &samples, r, false).unwrap();
             assert!((fit.mean - 1.0).abs() < 1e-9 && (fit.gaussian - 1.0).abs() < 1e-9, "r = {r}: {fit:?}");
             assert!(fit.residual < 1e-9);
         }
@@ -248,14 +296,14 @@ mod tests {
         let frame = DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1);
         // Sections bending away from n: k1 = 2 along x, k2 = 0.5 along y.
         let samples = circle_samples(frame, DVec3::ZERO, [-2.0, 0.0, -0.5], 0.3);
-        let fit = quadric_fit(DVec3::ZERO, frame * DVec3::Z, &samples, 0.3).unwrap();
+        let fit = quadric_fit(DVec3::ZERO, frame * DVec3::Z, &samples, 0.3, false).unwrap();
         assert!((fit.k1 - 2.0).abs() < 1e-9 && (fit.k2 - 0.5).abs() < 1e-9, "{fit:?}");
         assert!((fit.mean - 1.25).abs() < 1e-9 && (fit.gaussian - 1.0).abs() < 1e-9);
         assert!(fit.d1.dot(frame * DVec3::X).abs() > 1.0 - 1e-12);
         assert!(fit.d2.dot(frame * DVec3::Y).abs() > 1.0 - 1e-12);
         // A saddle: k1 > 0 > k2.
         let saddle = circle_samples(frame, DVec3::ZERO, [1.0, 0.0, -1.0], 0.3);
-        let fit = quadric_fit(DVec3::ZERO, frame * DVec3::Z, &saddle, 0.3).unwrap();
+        let fit = quadric_fit(DVec3::ZERO, frame * DVec3::Z, &saddle, 0.3, false).unwrap();
         assert!((fit.k1 - 1.0).abs() < 1e-9 && (fit.k2 + 1.0).abs() < 1e-9 && fit.mean.abs() < 1e-9, "{fit:?}");
     }
 
@@ -267,17 +315,62 @@ mod tests {
         let (n, r) = (frame * DVec3::Z, 0.3);
         let samples = circle_samples(frame, DVec3::ZERO, [-2.0, 0.0, -0.5], r);
         let tilted = (n + 0.15 * (frame * DVec3::new(0.6, 0.8, 0.0))).normalize();
-        let fit = quadric_fit(0.01 * r * n, tilted, &samples, r).unwrap();
+        let fit = quadric_fit(0.01 * r * n, tilted, &samples, r, false).unwrap();
         eprintln!("{fit:?}");
         assert!((fit.k1 - 2.0).abs() < 2e-3 && (fit.k2 - 0.5).abs() < 2e-3, "{fit:?}");
         assert!(fit.d1.dot(frame * DVec3::X).abs() > 0.9999);
     }
 
+    /// For independent samples the sandwich errors of `H` and `K` match the spread of the fit over
+    /// repeated draws (here: uniform area samples of a noisy surface with `k1 = 2`, `k2 = 0.5`).
+    #[test]
+    fn sandwich_errors_match_the_spread_over_independent_draws() {
+        let (r, draws, n) = (0.3, 300, 200);
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut uniform = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut means, mut gaussians, mut reported) = (Vec::new(), Vec::new(), (0.0, 0.0));
+        for _ in 0..draws {
+            let samples: Vec<Sample> = (0..n)
+                .map(|_| {
+                    let (rho, phi) = (r * uniform().sqrt(), std::f64::consts::TAU * uniform());
+                    let (x, y) = (rho * phi.cos(), rho * phi.sin());
+                    let noise = 0.02 * r * (uniform() - 0.5);
+                    let z = -(2.0 * x * x + 0.5 * y * y) / 2.0 + noise;
+                    Sample {
+                        position: DVec3::new(x, y, z),
+                        normal: DVec3::Z,
+                        area: 1.0,
+                        distance: rho,
+                        sin_alpha: 0.0,
+                        geodesic: rho,
+                        pattern_index: 0,
+                    }
+                })
+                .collect();
+            let fit = quadric_fit(DVec3::ZERO, DVec3::Z, &samples, r, true).unwrap();
+            means.push(fit.mean);
+            gaussians.push(fit.gaussian);
+            reported.0 += fit.mean_error / f64::from(draws);
+            reported.1 += fit.gaussian_error / f64::from(draws);
+        }
+        let spread = |v: &[f64]| {
+            let mean = v.iter().sum::<f64>() / v.len() as f64;
+            (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
+        };
+        let (h, k) = (spread(&means) / reported.0, spread(&gaussians) / reported.1);
+        assert!((0.8..1.25).contains(&h) && (0.8..1.25).contains(&k), "measured / reported: H {h}, K {k}");
+    }
+
     #[test]
     fn too_few_or_collinear_samples_give_none() {
         let samples = circle_samples(DQuat::IDENTITY, DVec3::ZERO, [1.0, 0.0, 1.0], 0.2);
-        assert!(quadric_fit(DVec3::ZERO, DVec3::Z, &samples[..4], 0.2).is_none());
+        assert!(quadric_fit(DVec3::ZERO, DVec3::Z, &samples[..4], 0.2, false).is_none());
         let line: Vec<Sample> = samples.iter().filter(|s| s.position.y.abs() < 1e-12).copied().collect();
-        assert!(quadric_fit(DVec3::ZERO, DVec3::Z, &line, 0.2).is_none());
+        assert!(quadric_fit(DVec3::ZERO, DVec3::Z, &line, 0.2, false).is_none());
     }
 }

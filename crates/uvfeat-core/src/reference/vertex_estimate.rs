@@ -100,7 +100,8 @@ pub(super) fn vertex_estimate(centre: u32, context: &Context, scratch: &mut Scra
             stats.geodesic_disk = clipped_disk(search, context.connectivity, geometry, r, bound, faces_seen);
         }
     }
-    let fit =
-        (context.estimators.method == CurvatureMethod::Fit).then(|| quadric_fit(p, n, &scratch.samples, r)).flatten();
+    let fit = (context.estimators.method == CurvatureMethod::Fit)
+        .then(|| quadric_fit(p, n, &scratch.samples, r, false))
+        .flatten();
     (estimate(&stats, fit.as_ref(), &context.estimators).values, scratch.samples.len() as u32)
 }
