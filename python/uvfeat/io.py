@@ -66,12 +66,21 @@ def _parts(path: str) -> list:
     return _trimesh_geometry(path)
 
 
-def _merged(parts: list) -> tuple[np.ndarray, np.ndarray]:
+def _rows(values, dtype, what: str, path: str) -> np.ndarray:
+    """``values`` as rows of three (a broken file's empty parts, whose arrays trimesh may leave
+    one-dimensional, as no rows), or an :class:`InvalidMeshError` naming what is malformed."""
+    array = np.asarray(values, dtype=dtype)
+    if array.size % 3:
+        raise InvalidMeshError(f"{path!r}: its {what} are not rows of three (shape {array.shape})")
+    return array.reshape(-1, 3)
+
+
+def _merged(parts: list, path: str) -> tuple[np.ndarray, np.ndarray]:
     """Positions and faces of all parts, concatenated in order."""
-    positions = np.concatenate([np.asarray(g.vertices, dtype=np.float64) for g in parts])
-    offsets = np.cumsum([0] + [len(g.vertices) for g in parts])[:-1]
-    faces = np.concatenate([np.asarray(g.faces, dtype=np.int64) + o for g, o in zip(parts, offsets)])
-    return positions, faces
+    positions = [_rows(g.vertices, np.float64, "vertices", path) for g in parts]
+    offsets = np.cumsum([0] + [len(p) for p in positions])[:-1]
+    faces = [_rows(g.faces, np.int64, "faces", path) + o for g, o in zip(parts, offsets)]
+    return np.concatenate(positions), np.concatenate(faces)
 
 
 def read_geometry(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
@@ -84,7 +93,8 @@ def read_geometry(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
     MeshFileError, InvalidMeshError
         As for :func:`load`.
     """
-    return _merged(_parts(os.fspath(path)))
+    path = os.fspath(path)
+    return _merged(_parts(path), path)
 
 
 def _uvs_of(geometry) -> np.ndarray | None:
@@ -129,7 +139,7 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
         raise ValueError(f"uv must be one of {UV_POLICIES}, got {uv!r}")
     path = os.fspath(path)
     parts = _parts(path)
-    positions, faces = _merged(parts)
+    positions, faces = _merged(parts, path)
     part_uvs = [_uvs_of(g) for g in parts]
     name = os.path.basename(path)
     has_uvs = all(u is not None for u in part_uvs)
