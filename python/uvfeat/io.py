@@ -41,7 +41,8 @@ def _trimesh_geometry(path: str):
     except Exception as exc:  # trimesh raises many types for broken files
         raise MeshFileError(f"cannot read {path!r}: {exc}") from exc
     if isinstance(loaded, trimesh.Scene):
-        meshes = [g for g in parts if isinstance(g, trimesh.Trimesh)]
+        # A part without faces adds nothing but trouble (no UVs to lay out, no rows to merge).
+        meshes = [g for g in parts if isinstance(g, trimesh.Trimesh) and len(g.faces)]
         if not meshes:
             raise InvalidMeshError(f"{path!r} contains no triangle mesh")
         return meshes
