@@ -112,3 +112,17 @@ def test_a_100k_face_scan_is_drawn_in_seconds(shared_mesh, tmp_path):
     plt.close("all")
     assert elapsed < 10.0, f"three views of {mesh.n_faces} faces took {elapsed:.1f} s"
     assert (tmp_path / "dragon.png").stat().st_size > 50_000
+
+
+def test_pictures_leave_the_callers_matplotlib_backend_and_figures_alone(tmp_path):
+    """uvfeat draws on figures of its own: a notebook's backend and open figures stay as they were."""
+    import matplotlib
+
+    backend, before = matplotlib.get_backend(), plt.get_fignums()
+    sphere = uvfeat.shapes.uv_sphere(1.0, 16, 8)
+    uvfeat.plot(sphere, sphere.positions[:, 1], feature="k1", path=tmp_path / "plot.png")
+    from uvfeat.images import save_feature_figure
+
+    save_feature_figure(tmp_path / "map.png", "k1", np.zeros((8, 8)), 0.1)
+    assert matplotlib.get_backend() == backend and plt.get_fignums() == before
+    assert (tmp_path / "plot.png").stat().st_size > 0 and (tmp_path / "map.png").stat().st_size > 0

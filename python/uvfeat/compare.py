@@ -142,12 +142,7 @@ def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike)
     """Per feature, ``compare_<feature>.png`` (parametric | reference | absolute difference, same
     view, shared colour range) and ``error_<feature>.png`` (the difference alone, larger).
     Returns the paths."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .images import FEATURE_UNITS, colour_range
+    from .images import FEATURE_UNITS, colour_range, offscreen_figure
     from .render import draw_vertex_values
 
     os.makedirs(out_dir, exist_ok=True)
@@ -163,7 +158,8 @@ def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike)
         err = comparison.errors[name]
         panels = [("parametric", par, cmap, low, high), ("reference", ref, cmap, low, high),
                   (f"|difference|  %AE {err['percent_ae']:.3g}", difference, "magma", 0.0, top or 1.0)]
-        fig, axes = plt.subplots(1, 3, figsize=(15, 5.2), dpi=110)
+        fig = offscreen_figure((15, 5.2), 110)
+        axes = fig.subplots(1, 3)
         for ax, (title, values, colours, lo, hi) in zip(axes, panels):
             mappable = draw_vertex_values(ax, mesh.positions, mesh.faces, values, colours, lo, hi)
             ax.set_title(title)
@@ -173,12 +169,11 @@ def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike)
                      f"reference {1e3 * t['reference']:.0f} ms (speed-up {t['speedup']:.2f}x)")
         paths[f"compare_{name}"] = os.path.join(os.fspath(out_dir), f"compare_{name}.png")
         fig.savefig(paths[f"compare_{name}"], bbox_inches="tight")
-        plt.close(fig)
-        fig, ax = plt.subplots(figsize=(7, 6), dpi=110)
+        fig = offscreen_figure((7, 6), 110)
+        ax = fig.subplots()
         mappable = draw_vertex_values(ax, mesh.positions, mesh.faces, difference, "magma", 0.0, top or 1.0)
         ax.set_title(f"{name}: |parametric - reference| (mean-normalised {err['mean_normalised']:.3g})")
         fig.colorbar(mappable, ax=ax, fraction=0.046, pad=0.04, label=unit)
         paths[f"error_{name}"] = os.path.join(os.fspath(out_dir), f"error_{name}.png")
         fig.savefig(paths[f"error_{name}"], bbox_inches="tight")
-        plt.close(fig)
     return paths

@@ -149,17 +149,25 @@ def vertex_colours(name: str, values: np.ndarray) -> np.ndarray:
     return rgba
 
 
+def offscreen_figure(figsize: tuple[float, float], dpi: int):
+    """A matplotlib Figure drawn by the Agg canvas, outside pyplot: writing pictures neither needs
+    a display nor changes the caller's backend or open figures (``fig.canvas.buffer_rgba()`` gives
+    the pixels)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=figsize, dpi=dpi)
+    FigureCanvasAgg(fig)
+    return fig
+
+
 def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray, radius: float, mesh_name: str = "",
                         line_field: np.ndarray | None = None) -> None:
     """The feature map as a picture with a colourbar (v up, robust range, NaN transparent), with
     ``line_field`` (``(W, W, 2)`` UV directions, e.g. a principal direction) drawn as segments."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     cmap, low, high = colour_range(name, texture)
-    fig, ax = plt.subplots(figsize=(6.4, 5.4), dpi=120)
+    fig = offscreen_figure((6.4, 5.4), 120)
+    ax = fig.subplots()
     image = ax.imshow(np.flipud(texture), cmap=cmap, vmin=low, vmax=high, interpolation="nearest")
     if line_field is not None:
         from .line_field import draw_line_field
@@ -170,7 +178,6 @@ def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray,
     ax.set_title(f"{mesh_name} {name} (r = {radius:.4g})".strip())
     fig.colorbar(image, ax=ax, fraction=0.046, pad=0.04, label=unit)
     fig.savefig(os.fspath(path), bbox_inches="tight", transparent=False)
-    plt.close(fig)
 
 
 def feature_picture(name: str, texture: np.ndarray, low: float, high: float) -> np.ndarray:

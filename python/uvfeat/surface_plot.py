@@ -77,10 +77,8 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     range over all radii unless ``low``/``high`` are given. ``views`` are names of :data:`VIEWS`
     or ``(elevation, azimuth)`` pairs, ``up`` the axis that points up. Runs without a display."""
     import matplotlib
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
 
-    from .images import FEATURE_UNITS, colour_range
+    from .images import FEATURE_UNITS, colour_range, offscreen_figure
     from .render import UP_AXES, draw_vertex_values
 
     if up not in UP_AXES:
@@ -94,9 +92,7 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     low = robust_low if low is None else float(low)
     high = robust_high if high is None else float(high)
     height = panel_inches * len(angles) + 0.8
-    # A Figure of its own rather than pyplot's: the caller's backend and open figures stay as they were.
-    fig = Figure(figsize=(panel_inches * len(rows) + 1.2, height), dpi=dpi)
-    FigureCanvasAgg(fig)  # draws without a display (fig.canvas.buffer_rgba() gives the pixels)
+    fig = offscreen_figure((panel_inches * len(rows) + 1.2, height), dpi)
     axes = fig.subplots(len(angles), len(rows), squeeze=False)
     # Room at the top for the title and the radii, whatever the number of rows.
     fig.subplots_adjust(left=0.02, right=0.98, bottom=0.02, top=1.0 - 0.75 / height, wspace=0.05, hspace=0.05)
