@@ -11,7 +11,7 @@ import os
 
 import numpy as np
 
-from .images import SIGNED_FEATURES, colour_range, colour_values, vertex_colours
+from .images import SIGNED_FEATURES, colour_range, colour_values
 from .mesh import Mesh
 
 #: 16-bit PNG levels.
@@ -126,19 +126,6 @@ def write_glbs(out: str, stem: str, mesh: Mesh, per_vertex: np.ndarray, colour_t
     coloured.export(paths["colours"])
     textured.export(paths["texture"])
     return paths
-
-
-def write_quality_ply(path: str, mesh: Mesh, name: str, values: dict[str, np.ndarray]) -> None:
-    """PLY with ``quality`` = the feature ``name`` (MeshLab's per-vertex quality), every feature
-    as a float property of its own name, and vertex colours."""
-    import trimesh
-
-    ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
-    ply.vertex_attributes["quality"] = values[name].astype(np.float32)
-    for feature, v in values.items():
-        ply.vertex_attributes[feature] = v.astype(np.float32)
-    ply.visual.vertex_colors = vertex_colours(name, values[name])
-    ply.export(path)
 
 
 def bake_feature(out: str, stem: str, mesh: Mesh, name: str, texture: np.ndarray, per_vertex: np.ndarray,

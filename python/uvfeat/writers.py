@@ -23,7 +23,8 @@ def write_per_vertex(out: str, tag: str, mesh: Mesh, radius: float, values: dict
                      directions: np.ndarray | None = None) -> None:
     """Writes ``per_vertex_r<tag>.npz`` (positions, faces, radius, one array per feature and the
     principal directions when given) and ``per_vertex_r<tag>.ply`` (the same values as vertex
-    properties, coloured by the first feature)."""
+    properties, the first feature also as ``quality``, which MeshLab reads as its per-vertex
+    quality, and coloured by it)."""
     import trimesh
 
     arrays = dict(values)
@@ -32,11 +33,12 @@ def write_per_vertex(out: str, tag: str, mesh: Mesh, radius: float, values: dict
     np.savez_compressed(os.path.join(out, f"per_vertex_r{tag}.npz"), positions=mesh.positions, faces=mesh.faces,
                         radius=radius, **arrays)
     ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
+    first = next(iter(values))
+    ply.vertex_attributes["quality"] = values[first].astype(np.float32)
     for name, v in values.items():
         ply.vertex_attributes[name] = v.astype(np.float32)
     for name, v in direction_properties(directions).items():
         ply.vertex_attributes[name] = v
-    first = next(iter(values))
     ply.visual.vertex_colors = vertex_colours(first, values[first])
     ply.export(os.path.join(out, f"per_vertex_r{tag}.ply"))
 

@@ -9,7 +9,7 @@ from .._core import __version__
 from ..extras import require
 from ..feature_files import radius_list, radius_tag
 from ..notes import recorded_notes
-from ..writers import write_json
+from ..writers import write_json, write_per_vertex
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 
@@ -27,7 +27,7 @@ def add_command(commands) -> None:
 
 def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> dict:
     from ..atlas import Atlas
-    from ..bake import bake_feature, write_quality_ply
+    from ..bake import bake_feature
     from ..options import feature_names
 
     require("scipy.ndimage", "dilating texture gutters")  # before minutes of computing, not after
@@ -55,10 +55,9 @@ def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> d
                             bake_feature(args.out, f"{name}_r{tag}", atlas.mesh, name, m.texture, per_vertex[name],
                                          m.radius).items()}
                      for name, m in maps.items()}
-            ply = os.path.join(args.out, f"per_vertex_r{tag}.ply")
-            write_quality_ply(ply, atlas.mesh, names[0], per_vertex)
-            summary["radii"][radius] = {"radius": next(iter(maps.values())).radius, "files": files,
-                                        "ply": os.path.basename(ply)}
+            first = next(iter(maps.values()))
+            write_per_vertex(args.out, tag, atlas.mesh, first.radius, per_vertex)
+            summary["radii"][radius] = {"radius": first.radius, "files": files, "ply": f"per_vertex_r{tag}.ply"}
         write_json(os.path.join(args.out, "bake.json"), summary)
     print_notes_and_outputs(console, summary["warnings"], "textures (.png 16-bit, .tif float, curvature and colour "
                             ".png), .glb, .ply and bake.json", args.out)
