@@ -99,10 +99,12 @@ def read_geometry(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _uvs_of(geometry) -> np.ndarray | None:
+    """A part's per-vertex UVs, or None where it has none (or none that are pairs, one per vertex)."""
     uv = getattr(getattr(geometry, "visual", None), "uv", None)
     if uv is None or len(uv) != len(geometry.vertices):
         return None
-    return np.asarray(uv, dtype=np.float64)
+    uv = np.asarray(uv, dtype=np.float64)
+    return uv[:, :2] if uv.ndim == 2 and uv.shape[1] >= 2 else None
 
 
 def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, normalize_uv: bool = True) -> Mesh:
