@@ -95,8 +95,10 @@ pub fn evaluate_point(
     let mut stats = NeighbourhoodStats::default();
     stats.accumulate(scratch, centre.normal, &stats_settings);
     let mut second_stage = false;
+    // With the fit, adaptive sampling decides on the stage-1 fit's own errors; that fit is the final
+    // one unless stage 2 runs.
+    let mut stage_one_fit = None;
     if settings.adaptive {
-        // The error of the estimator that runs: with the fit, the stage-1 fit's own.
         let stage_one = (settings.method == CurvatureMethod::Fit)
             .then(|| quadric_fit(centre.position, centre.normal, scratch, settings.radius, true));
         let relative_error = |f: Feature| match &stage_one {
@@ -104,6 +106,7 @@ pub fn evaluate_point(
             None => relative_standard_error(f, &stats, &estimators),
         };
         let needs_more = settings.features.iter().any(|&f| !(relative_error(f) <= settings.tau));
+        stage_one_fit = stage_one;
         if needs_more && !patterns.second.is_empty() {
             second_stage = true;
             let second = patterns.second.len();
@@ -120,7 +123,10 @@ pub fn evaluate_point(
     }
     // Pooled stages weight their samples by A_uv / N_stage, equal up to one sample for N/2 and
     // N - N/2: the fit, invariant to a common scale of the weights, pools them as they are.
-    let fit = fit_if_asked(settings, &centre, scratch, settings.standard_errors);
+    let fit = match stage_one_fit {
+        Some(fit) if !second_stage => fit,
+        _ => fit_if_asked(settings, &centre, scratch),
+    };
     let estimates = estimate(&stats, fit.as_ref(), &estimators);
     let mut result = PixelResult {
         values: estimates.values.map(|v| v as f32),
@@ -145,32 +151,24 @@ pub fn evaluate_point(
     result
 }
 
-/// The standard errors of the fitted curvatures, in place of their batch means: a fit to an
-/// eighth of the samples is far noisier than the fit to all of them (torus at r = 0.3, 128
-/// samples: batch means 0.10 / r for H against a measured spread over seeds of 0.0009 / r), so
-/// batches overstate it a hundredfold. `H` and `K` from the fit's sandwich covariance; `k1`, `k2`
-/// and the curvedness follow `H`'s; the shape index has none (NaN).
+/// The standard errors of the fitted curvatures (see [`QuadricFit::standard_error`]) in place of
+/// the batches' NaN: a fit to an eighth of the samples is far noisier than the fit to all of them
+/// (torus at r = 0.3, 128 samples: batch means 0.10 / r for H against a measured spread over seeds
+/// of 0.0009 / r), so the batches do not fit at all.
 fn with_fit_errors(mut errors: [f32; 9], fit: &QuadricFit) -> [f32; 9] {
-    for feature in [Feature::MeanCurvature, Feature::K1, Feature::K2, Feature::Curvedness] {
-        errors[feature.index()] = fit.mean_error as f32;
+    for feature in Feature::ALL.into_iter().filter(|f| f.from_fit()) {
+        errors[feature.index()] = fit.standard_error(feature) as f32;
     }
-    errors[Feature::GaussianCurvature.index()] = fit.gaussian_error as f32;
-    errors[Feature::ShapeIndex.index()] = f32::NAN;
     errors
 }
 
 const EMPTY_DIRECTIONS: [[f32; 3]; 2] = [[f32::NAN; 3]; 2];
 
-/// The quadric fit of `samples` when the settings ask for it (with its standard errors when
-/// `with_errors`).
-fn fit_if_asked(
-    settings: &ComputeSettings,
-    centre: &Centre,
-    samples: &[Sample],
-    with_errors: bool,
-) -> Option<QuadricFit> {
+/// The quadric fit of `samples` when the settings ask for it (with its standard errors when they
+/// are asked for too).
+fn fit_if_asked(settings: &ComputeSettings, centre: &Centre, samples: &[Sample]) -> Option<QuadricFit> {
     if settings.method == CurvatureMethod::Fit {
-        quadric_fit(centre.position, centre.normal, samples, settings.radius, with_errors)
+        quadric_fit(centre.position, centre.normal, samples, settings.radius, settings.standard_errors)
     } else {
         None
     }
@@ -201,8 +199,8 @@ fn batch_standard_errors(
             let mut stats = NeighbourhoodStats::default();
             stats.accumulate(batch, centre.normal, &stats_settings);
             stats.scale_areas(BATCHES as f64 * pooled_scale);
-            let fit = fit_if_asked(settings, centre, batch, false);
-            estimate(&stats, fit.as_ref(), &estimators).values
+            // No fit per batch: the fitted curvatures' errors are the full fit's own.
+            estimate(&stats, None, &estimators).values
         })
         .collect();
     std::array::from_fn(|f| {

@@ -65,6 +65,12 @@ impl Feature {
         Feature::Curvedness,
     ];
 
+    /// `true` for the curvature features, which the quadric fit estimates with `method = "fit"`
+    /// (the volumes and the bending energy are always integral).
+    pub fn from_fit(self) -> bool {
+        !matches!(self, Feature::BendingEnergy | Feature::OpenVolume | Feature::VolumeInvariant)
+    }
+
     /// Public name (Python, CLI, files).
     pub fn name(self) -> &'static str {
         match self {
@@ -203,22 +209,22 @@ pub fn relative_standard_error(feature: Feature, stats: &NeighbourhoodStats, set
 }
 
 /// As [`relative_standard_error`] when the curvatures come from the quadric fit: its own
-/// standard errors for the curvature features (`H`'s for k1, k2, curvedness and the shape index,
-/// whose errors follow it), the integral sums' for the others; NaN where the fit failed.
+/// standard errors ([`QuadricFit::standard_error`]) for the curvature features, the integral
+/// sums' for the others; NaN where the fit failed. The shape index, which has no error of its own,
+/// is decided on `H`'s relative error, which it follows (NaN would run stage 2 everywhere).
 pub fn fit_relative_error(
     feature: Feature,
     fit: Option<&QuadricFit>,
     stats: &NeighbourhoodStats,
     settings: &EstimatorSettings,
 ) -> f64 {
-    let r = settings.radius;
-    match feature {
-        Feature::GaussianCurvature => fit.map_or(f64::NAN, |f| f.gaussian_error * r * r),
-        Feature::MeanCurvature | Feature::K1 | Feature::K2 | Feature::Curvedness | Feature::ShapeIndex => {
-            fit.map_or(f64::NAN, |f| f.mean_error * r)
-        }
-        _ => relative_standard_error(feature, stats, settings),
+    if !feature.from_fit() {
+        return relative_standard_error(feature, stats, settings);
     }
+    let decided_on = if feature == Feature::ShapeIndex { Feature::MeanCurvature } else { feature };
+    let r = settings.radius;
+    let unit = if decided_on == Feature::GaussianCurvature { r * r } else { r };
+    fit.map_or(f64::NAN, |f| f.standard_error(decided_on) * unit)
 }
 
 #[cfg(test)]

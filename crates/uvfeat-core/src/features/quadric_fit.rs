@@ -25,6 +25,7 @@
 //! Its eigenvalues are curvatures towards `n`; uvfeat's convention (positive where the surface
 //! bends *away* from the outward normal, unit sphere `H = +1`) flips their sign.
 
+use super::Feature;
 use crate::sampling::Sample;
 use glam::DVec3;
 
@@ -66,6 +67,19 @@ pub struct QuadricFit {
     pub gaussian_error: f64,
 }
 
+impl QuadricFit {
+    /// The standard error of `feature` as the fit estimates it: `mean_error` for `H`, and for
+    /// `k1`, `k2` and the curvedness, which follow it; `gaussian_error` for `K`; NaN for the shape
+    /// index, which has none, and for the features the fit does not estimate.
+    pub fn standard_error(&self, feature: Feature) -> f64 {
+        match feature {
+            Feature::MeanCurvature | Feature::K1 | Feature::K2 | Feature::Curvedness => self.mean_error,
+            Feature::GaussianCurvature => self.gaussian_error,
+            _ => f64::NAN,
+        }
+    }
+}
+
 /// One sample in a local frame, in units of `r`.
 #[derive(Clone, Copy)]
 struct Local {
@@ -104,13 +118,8 @@ impl Frame {
     }
 }
 
-/// Weighted least squares of the model in `frame`: `(c0, c1, c2, a, b, c)` in units of `r`.
-fn solve_in(frame: &Frame, samples: &[Sample], radius: f64) -> Option<[f64; UNKNOWNS]> {
-    let (ata, atb) = normal_equations(frame, samples, radius);
-    solve_cholesky(ata, atb)
-}
-
-/// `A = sum w x x^T` (lower triangle) and `sum w x z` of the model in `frame`.
+/// The weighted least squares of the model in `frame` (unknowns `(c0, c1, c2, a, b, c)` in units
+/// of `r`): `A = sum w x x^T` (lower triangle) and `sum w x z`.
 fn normal_equations(frame: &Frame, samples: &[Sample], radius: f64) -> ([[f64; UNKNOWNS]; UNKNOWNS], [f64; UNKNOWNS]) {
     let mut ata = [[0.0; UNKNOWNS]; UNKNOWNS];
     let mut atb = [0.0; UNKNOWNS];
@@ -127,26 +136,11 @@ fn normal_equations(frame: &Frame, samples: &[Sample], radius: f64) -> ([[f64; U
     (ata, atb)
 }
 
-/// Standard errors (units of `1/r` and `1/r^2`) of `H` and `K` of `coef` fitted in `frame`: see
-/// [`QuadricFit::mean_error`].
-fn curvature_errors(frame: &Frame, samples: &[Sample], radius: f64, coef: &[f64; UNKNOWNS]) -> (f64, f64) {
-    let (ata, _) = normal_equations(frame, samples, radius);
+/// Gradients of `H r = -(a + c)/2` and `K r^2 = ac - b^2` with respect to the coefficients, in
+/// the fitted frame (where the tilt `c1, c2` vanishes): see [`QuadricFit::mean_error`].
+fn curvature_gradients(coef: &[f64; UNKNOWNS]) -> [[f64; UNKNOWNS]; 2] {
     let [_, _, _, a, b, c] = *coef;
-    let gradients = [[0.0, 0.0, 0.0, -0.5, 0.0, -0.5], [0.0, 0.0, 0.0, c, -2.0 * b, a]];
-    let errors = gradients.map(|g| {
-        // Var(g . coef) = u^T M u with u = A^-1 g and M = sum (w e)^2 x x^T.
-        let Some(u) = solve_cholesky(ata, g) else { return f64::NAN };
-        let variance: f64 = samples
-            .iter()
-            .map(|s| {
-                let q = Local::new((s.position - frame.origin) / radius, frame);
-                let projected: f64 = q.basis.iter().zip(&u).map(|(x, u)| x * u).sum();
-                (s.area * (q.z - q.height(coef)) * projected).powi(2)
-            })
-            .sum();
-        variance.sqrt()
-    });
-    (errors[0] / radius, errors[1] / (radius * radius))
+    [[0.0, 0.0, 0.0, -0.5, 0.0, -0.5], [0.0, 0.0, 0.0, c, -2.0 * b, a]]
 }
 
 /// Fits osculating circles to `samples` around `centre` with normal `normal` (unit) at scale
@@ -159,18 +153,31 @@ pub fn quadric_fit(
     with_errors: bool,
 ) -> Option<QuadricFit> {
     let first = Frame::new(centre, normal);
-    let [c0, c1, c2, ..] = solve_in(&first, samples, radius)?;
+    let (ata, atb) = normal_equations(&first, samples, radius);
+    let [c0, c1, c2, ..] = solve_cholesky(ata, atb)?;
     let fitted = Frame::new(centre + c0 * radius * normal, (normal - c1 * first.t1 - c2 * first.t2).normalize());
-    let coef = solve_in(&fitted, samples, radius)?;
-    let (mut sum_w, mut sum_we2) = (0.0, 0.0);
+    let (ata, atb) = normal_equations(&fitted, samples, radius);
+    let coef = solve_cholesky(ata, atb)?;
+    // The sandwich variance of `g . coef` is `u^T M u`, `u = A^-1 g`, `M = sum (w e)^2 x x^T`:
+    // summed with the residual, in the same pass over the samples.
+    let projections = with_errors.then(|| curvature_gradients(&coef).map(|g| solve_cholesky(ata, g)));
+    let (mut sum_w, mut sum_we2, mut variances) = (0.0, 0.0, [0.0; 2]);
     for s in samples {
         let q = Local::new((s.position - fitted.origin) / radius, &fitted);
         let e = q.z - q.height(&coef);
         sum_w += s.area;
         sum_we2 += s.area * e * e;
+        for (variance, u) in variances.iter_mut().zip(projections.iter().flatten()) {
+            if let Some(u) = u {
+                *variance += (s.area * e * q.height(u)).powi(2);
+            }
+        }
     }
-    let (mean_error, gaussian_error) =
-        if with_errors { curvature_errors(&fitted, samples, radius, &coef) } else { (f64::NAN, f64::NAN) };
+    let error = |k: usize| match projections {
+        Some(us) if us[k].is_some() => variances[k].sqrt(),
+        _ => f64::NAN,
+    };
+    let (mean_error, gaussian_error) = (error(0) / radius, error(1) / (radius * radius));
     let [_, c1, c2, a, b, c] = coef;
     let (a, b, c) = (a / radius, b / radius, c / radius);
     let Frame { t1, t2, normal, .. } = fitted;

@@ -12,7 +12,7 @@ use glam::{DMat2, DVec2};
 
 /// Where a parametric `target` reached from the centre lies on the surface.
 enum Reached {
-    Surface { point: SurfacePoint, m_path: DMat2, own_chart_uv: Option<DVec2>, returned_uv: Option<DVec2> },
+    Surface { point: SurfacePoint, m_path: DMat2, own_chart_uv: Option<DVec2> },
     Border,
     Missing,
 }
@@ -20,10 +20,6 @@ enum Reached {
 /// Where `target`, an offset of the centre, lies (DESIGN.md §1.5 `locate` with the settings' method).
 pub(super) fn locate_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Located {
     locate_with(atlas, settings.relocation, centre.uv, Some(&centre.home), centre.chart, target, settings.max_jumps)
-}
-
-fn reach_target(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Reached {
-    reached(atlas, centre, locate_target(atlas, centre, target, settings), settings)
 }
 
 /// The surface point of a located target, looked up with the settings' lookup.
@@ -35,13 +31,7 @@ fn reached(atlas: &Atlas, centre: &Centre, located: Located, settings: &SamplerS
     };
     match settings.lookup.evaluate(atlas, face, uv, chart) {
         Some(point) => {
-            let in_centre_chart = chart == centre.chart;
-            Reached::Surface {
-                point,
-                m_path,
-                own_chart_uv: (jumps == 0 && in_centre_chart).then_some(uv),
-                returned_uv: (jumps > 0 && in_centre_chart).then_some(uv),
-            }
+            Reached::Surface { point, m_path, own_chart_uv: (jumps == 0 && chart == centre.chart).then_some(uv) }
         }
         None => Reached::Missing,
     }
@@ -61,7 +51,12 @@ pub struct Probed {
 /// The surface point reached at `target` when it lies in the ball `S(p, r)`; `None` outside it or
 /// off the surface (a mesh border or a failed relocation ends the neighbourhood there too).
 pub fn probe_inside(atlas: &Atlas, centre: &Centre, target: DVec2, settings: &SamplerSettings) -> Option<Probed> {
-    let Reached::Surface { point, returned_uv, .. } = reach_target(atlas, centre, target, settings) else {
+    let located = locate_target(atlas, centre, target, settings);
+    let returned_uv = match located {
+        Located::Inside { chart, uv, jumps, .. } if jumps > 0 && chart == centre.chart => Some(uv),
+        _ => None,
+    };
+    let Reached::Surface { point, .. } = reached(atlas, centre, located, settings) else {
         return None;
     };
     let offset = point.position - centre.position;
@@ -88,7 +83,7 @@ pub(super) fn located_sample(
     counts: &mut SampleCounts,
 ) {
     match reached(atlas, centre, located, settings) {
-        Reached::Surface { point, m_path, own_chart_uv, .. } => {
+        Reached::Surface { point, m_path, own_chart_uv } => {
             let uv_area = m_path.determinant().abs() * uv_area;
             let candidate = Candidate { point, uv_area, own_chart_uv, pattern_index };
             counts.valid += u32::from(accept(atlas, centre, candidate, settings, out));
