@@ -15,6 +15,11 @@ import numpy as np
 
 from .errors import InvalidParameterError, ViewerError
 from .mesh import Mesh
+from .options import DEFAULT_OPTIONS
+
+#: The options of ``Atlas.compute`` a FeatureMap's settings record: "compute another radius" uses
+#: them, so that the new radius is computed as the others were.
+COMPUTE_OPTIONS = ("samples", "compute_resolution", "seed", "adaptive", *DEFAULT_OPTIONS)
 
 #: Polyscope's headless backend (EGL, no display).
 HEADLESS = "openGL3_egl"
@@ -265,17 +270,10 @@ def view(mesh: Mesh, results: dict | None = None, *, feature: str | None = None,
     if maps:
         atlas = atlas or maps[0]._atlas
         settings = maps[0].settings
-        # "Compute another radius" must compute as the given maps were computed
-        compute_options = compute_options or {k: settings[k] for k in _compute_options() if k in settings}
+        compute_options = compute_options or {k: settings[k] for k in COMPUTE_OPTIONS if k in settings}
     viewer = Viewer(mesh, scales_from_results(mesh, results, radius), atlas=atlas,
                     compute_options=compute_options, feature=feature, backend=backend)
     if show:
         viewer.show()
     return viewer
 
-
-def _compute_options() -> tuple[str, ...]:
-    """The options of ``Atlas.compute`` a FeatureMap's settings record."""
-    from .options import DEFAULT_OPTIONS
-
-    return ("samples", "compute_resolution", "seed", "adaptive", *DEFAULT_OPTIONS)
