@@ -11,7 +11,8 @@ use std::time::Instant;
 use uvfeat_core::features::Feature;
 use uvfeat_core::mesh::{Topology, TriangleMesh};
 use uvfeat_core::output::FeatureMaps;
-use uvfeat_core::sampling::{disk_pattern, pixel_angle, SamplingPath};
+use uvfeat_core::lookup::Lookup;
+use uvfeat_core::sampling::{centre_at, disk_pattern, pixel_angle, SamplingPath};
 use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::{Atlas, AtlasOptions};
 
@@ -138,6 +139,48 @@ fn gather_floor(
     (cpu_seconds() - cpu, inside as f64 / texels.max(1) as f64)
 }
 
+/// The analytic H and K of the torus at the centre of every computation texel.
+struct TorusTruth {
+    mean: Vec<f64>,
+    gaussian: Vec<f64>,
+}
+
+impl TorusTruth {
+    fn new(atlas: &Atlas, major: f64, minor: f64, side: usize) -> Self {
+        let (mut mean, mut gaussian) = (vec![f64::NAN; side * side], vec![f64::NAN; side * side]);
+        for t in 0..side * side {
+            let uv = glam::DVec2::new(((t % side) as f64 + 0.5) / side as f64, ((t / side) as f64 + 0.5) / side as f64);
+            if let Some(centre) = centre_at(atlas, uv, Lookup::Triangle) {
+                let p = centre.position;
+                let cos_v = ((p.x.hypot(p.y) - major) / minor).clamp(-1.0, 1.0);
+                mean[t] = (major + 2.0 * minor * cos_v) / (2.0 * minor * (major + minor * cos_v));
+                gaussian[t] = cos_v / (minor * (major + minor * cos_v));
+            }
+        }
+        Self { mean, gaussian }
+    }
+
+    /// Mean absolute error of H and K over the map, in % of the mean |truth|, and the mean
+    /// signed error of H in the same unit (the bias).
+    fn errors(&self, maps: &FeatureMaps) -> String {
+        let error = |values: &[f32], truth: &[f64]| {
+            let pairs: Vec<(f64, f64)> = values
+                .iter()
+                .zip(truth)
+                .filter(|(v, t)| v.is_finite() && t.is_finite())
+                .map(|(&v, &t)| (f64::from(v) - t, t.abs()))
+                .collect();
+            let scale = pairs.iter().map(|p| p.1).sum::<f64>();
+            let absolute = pairs.iter().map(|p| p.0.abs()).sum::<f64>() / scale;
+            let signed = pairs.iter().map(|p| p.0).sum::<f64>() / scale;
+            (100.0 * absolute, 100.0 * signed)
+        };
+        let (h, h_bias) = error(&maps.values[0], &self.mean);
+        let (k, k_bias) = error(&maps.values[1], &self.gaussian);
+        format!("against the analytic torus: H {h:.2} % (bias {h_bias:+.2} %), K {k:.2} % (bias {k_bias:+.2} %)")
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let value = |name: &str, default: f64| {
@@ -164,8 +207,10 @@ fn main() {
     settings.grow_margin = !args.iter().any(|a| a == "--no-grow");
     let threads = rayon::current_num_threads();
     println!("lat-long torus, {} faces, 1024² buffers, 512² texels x {samples} samples, r = {radius_percent} %, {threads} threads", mesh.faces.len());
+    let truth = TorusTruth::new(&atlas, 2.0, 0.5, 512);
     let mut results = Vec::new();
-    for path in [SamplingPath::Fast, SamplingPath::Exact].into_iter().filter(|p| exact || *p == SamplingPath::Fast) {
+    let paths = [SamplingPath::Fast, SamplingPath::Exact, SamplingPath::Shared];
+    for path in paths.into_iter().filter(|p| exact || *p != SamplingPath::Exact) {
         settings.sampling = path;
         let (wall, cpu) = (Instant::now(), cpu_seconds());
         let maps = FeatureMaps::compute(&atlas, &settings).unwrap();
@@ -179,6 +224,7 @@ fn main() {
             maps.summary.texels,
             maps.summary.mean_valid
         );
+        println!("    {}", truth.errors(&maps));
         results.push((maps, cpu));
     }
     let (fast, fast_cpu) = &results[0];

@@ -60,6 +60,26 @@ pub struct PixelResult {
 }
 
 impl PixelResult {
+    /// The estimates of one neighbourhood's statistics (and fit), with its counts and area ratio.
+    pub fn estimated(
+        stats: &NeighbourhoodStats,
+        fit: Option<&QuadricFit>,
+        counts: SampleCounts,
+        settings: &ComputeSettings,
+    ) -> Self {
+        let estimates = estimate(stats, fit, &settings.estimators());
+        PixelResult {
+            values: estimates.values.map(|v| v as f32),
+            errors: [f32::NAN; 9],
+            counts,
+            second_stage: false,
+            clamped: estimates.clamped,
+            directions: EMPTY_DIRECTIONS,
+            residual: f32::NAN,
+            area_ratio: (stats.geodesic_disk.w / (std::f64::consts::PI * settings.radius * settings.radius)) as f32,
+        }
+    }
+
     /// A point off the charts.
     pub const EMPTY: PixelResult = PixelResult {
         values: [f32::NAN; 9],
@@ -127,17 +147,8 @@ pub fn evaluate_point(
         Some(fit) if !second_stage => fit,
         _ => fit_if_asked(settings, &centre, scratch),
     };
-    let estimates = estimate(&stats, fit.as_ref(), &estimators);
-    let mut result = PixelResult {
-        values: estimates.values.map(|v| v as f32),
-        errors: [f32::NAN; 9],
-        counts,
-        second_stage,
-        clamped: estimates.clamped,
-        directions: EMPTY_DIRECTIONS,
-        residual: f32::NAN,
-        area_ratio: (stats.geodesic_disk.w / (std::f64::consts::PI * settings.radius * settings.radius)) as f32,
-    };
+    let mut result = PixelResult::estimated(&stats, fit.as_ref(), counts, settings);
+    result.second_stage = second_stage;
     if let Some(fit) = fit {
         result.directions = [fit.d1, fit.d2].map(|d| d.as_vec3().to_array());
         result.residual = fit.residual as f32;

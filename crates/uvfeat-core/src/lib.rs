@@ -11,8 +11,8 @@
 //! 5. [`relocation`] and [`lookup`]: seam crossing of parametric points, and the surface there;
 //! 6. [`sampling`]: the Monte Carlo neighbourhood of a parametric point;
 //! 7. [`features`]: the estimators over a neighbourhood's samples;
-//! 8. [`settings`], [`evaluation`] and [`output`]: what is asked, the features at one point,
-//!    and the maps, per-vertex values and neighbourhood tiles;
+//! 8. [`settings`], [`evaluation`], [`tile_evaluation`] and [`output`]: what is asked, the
+//!    features at one point and on a tile of texels, and the maps, per-vertex values and neighbourhood tiles;
 //! 9. [`reference`]: the object-space reference the parametric values are checked against.
 //!
 //! Conventions (DESIGN.md §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
@@ -37,6 +37,7 @@ pub mod relocation;
 pub mod sampling;
 pub mod settings;
 pub mod shapes;
+pub mod tile_evaluation;
 
 pub use atlas::{Atlas, AtlasOptions};
 pub use error::{Result, UvfeatError};

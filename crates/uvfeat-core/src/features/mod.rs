@@ -4,6 +4,7 @@
 mod bending_energy;
 mod curvedness;
 mod gaussian_curvature;
+mod lattice_statistics;
 mod mean_curvature;
 mod open_volume;
 mod principal_curvatures;
@@ -18,6 +19,7 @@ pub use gaussian_curvature::{
     gaussian_curvature_geodesic_area, gaussian_curvature_geodesic_area_error, gaussian_curvature_moments,
     GaussianMethod,
 };
+pub use lattice_statistics::{lattice_statistics, LatticeNeighbourhood, LatticeTexel};
 pub use mean_curvature::{mean_curvature, mean_curvature_error, radial_correction};
 pub use open_volume::{ball_volume, open_volume, open_volume_error};
 pub use principal_curvatures::principal_curvatures;

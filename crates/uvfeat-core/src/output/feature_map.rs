@@ -4,11 +4,11 @@
 use crate::atlas::Atlas;
 use crate::error::Result;
 use crate::evaluation::{evaluate_point, Patterns, PixelResult};
+use crate::tile_evaluation::{evaluate_tile, shared_lattice_applies, texel_uv};
 use crate::features::{CurvatureMethod, Feature};
 use crate::lookup::Lookup;
 use crate::sampling::Placement;
 use crate::settings::ComputeSettings;
-use glam::DVec2;
 use rayon::prelude::*;
 
 /// Side of the square tiles of texels evaluated together, so that their neighbourhoods' reads of
@@ -25,6 +25,21 @@ fn tiled_order(w: usize) -> Vec<usize> {
             (tj..(tj + TILE).min(w)).flat_map(move |j| (ti..(ti + TILE).min(w)).map(move |i| j * w + i))
         })
         .collect()
+}
+
+/// The runs of `order` (see [`tiled_order`]) that make up each tile of a `w`² texture.
+fn tile_runs(order: &[usize], w: usize) -> Vec<&[usize]> {
+    let tiles = w.div_ceil(TILE);
+    let mut runs = Vec::with_capacity(tiles * tiles);
+    let mut rest = order;
+    for tile in 0..tiles * tiles {
+        let (ti, tj) = (tile % tiles * TILE, tile / tiles * TILE);
+        let len = ((ti + TILE).min(w) - ti) * ((tj + TILE).min(w) - tj);
+        let (run, tail) = rest.split_at(len);
+        runs.push(run);
+        rest = tail;
+    }
+    runs
 }
 
 /// Neighbourhood area ratio above which a neighbourhood holds more than one sheet: one smooth sheet
@@ -98,21 +113,28 @@ impl FeatureMaps {
             atlas.buffers();
         }
         let order = tiled_order(w);
-        let results: Vec<PixelResult> = order
-            .par_iter()
-            .map_init(Vec::new, |scratch, &t| {
-                let (i, j) = (t % w, t / w);
-                let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-                let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
-                evaluate_point(atlas, uv, placement, settings, &patterns, scratch)
-            })
-            .collect();
+        let results: Vec<PixelResult> = if shared_lattice_applies(atlas, settings) {
+            // Tile after tile, in the order of `order`.
+            tile_runs(&order, w)
+                .par_iter()
+                .map_init(Vec::new, |scratch, texels| evaluate_tile(atlas, settings, &patterns, texels, scratch))
+                .flatten_iter()
+                .collect()
+        } else {
+            order
+                .par_iter()
+                .map_init(Vec::new, |scratch, &t| {
+                    let placement = Placement::of_pixel((t % w) as u32, (t / w) as u32, settings.seed);
+                    evaluate_point(atlas, texel_uv(t, w), placement, settings, &patterns, scratch)
+                })
+                .collect()
+        };
         let mut pixels = vec![PixelResult::EMPTY; w * w];
         for (&t, result) in order.iter().zip(results) {
             pixels[t] = result;
         }
         let chart = (0..w * w)
-            .map(|t| atlas.chart_at(DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64)))
+            .map(|t| atlas.chart_at(texel_uv(t, w)))
             .collect();
         Ok(Self::assemble(pixels, chart, settings))
     }

@@ -20,7 +20,7 @@ pub const MAX_MARGIN: f64 = 4.0;
 
 /// Pattern radius beyond which an accepted sample shows that the domain did not reach around the
 /// ball in its direction: with a matching metric and margin `m` the ball ends at radius `1/m`.
-const EDGE_RADIUS: f64 = 0.95;
+pub const EDGE_RADIUS: f64 = 0.95;
 
 /// Factor a direction's margin grows by when its rim samples are inside the ball.
 const GROWTH: f64 = 1.5;

@@ -30,7 +30,7 @@ use glam::{DVec2, DVec3, Vec2, Vec3};
 /// `true` when the fast path serves `settings` on `atlas`: the choices whose interior samples it
 /// reproduces (triangle lookup, walk or march relocation, arc geodesics, f32 buffers).
 pub fn applies(atlas: &Atlas, settings: &SamplerSettings) -> bool {
-    settings.path == SamplingPath::Fast
+    settings.path != SamplingPath::Exact
         && settings.lookup == Lookup::Triangle
         && settings.relocation != Relocation::PerChart
         && settings.geodesic == Geodesic::Arc

@@ -10,6 +10,7 @@ mod domain_growth;
 mod fast_path;
 mod gather;
 mod geodesic;
+mod lattice;
 mod located;
 mod pattern;
 mod per_chart;
@@ -19,8 +20,10 @@ mod settings;
 mod sheets;
 
 pub use centre::{centre_at, Centre};
-pub use domain_growth::{gather_covering, MAX_MARGIN};
+pub use domain_growth::{gather_covering, EDGE_RADIUS, MAX_MARGIN};
+pub use fast_path::applies as fast_path_applies;
 pub use gather::gather;
+pub use lattice::{LostPoint, TileLattice, TilePlane};
 pub use geodesic::{arc_distance, Geodesic, CHORD_SEGMENTS};
 pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,

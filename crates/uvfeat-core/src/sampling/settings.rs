@@ -60,10 +60,14 @@ pub enum Overlaps {
     Drop,
 }
 
-/// Which sampler runs: the fast path where it keeps the exact path's answers, or the exact path
-/// everywhere (the reference of the fast one).
+/// Which sampler runs: one lattice of samples shared by a tile of texels, the fast path where it
+/// keeps the exact path's answers, or the exact path everywhere (the reference of both).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SamplingPath {
+    /// Feature maps sample one jittered lattice per tile of texels, located once and shared by
+    /// every texel whose sampling domain it covers (see `sampling/lattice.rs`); texels and
+    /// settings it does not serve take the fast path.
+    Shared,
     /// Interior samples straight from the face-id buffer and the f32 patches (default).
     #[default]
     Fast,

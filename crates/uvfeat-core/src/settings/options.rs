@@ -58,7 +58,11 @@ crate::choice!(
 crate::choice!(Criterion, "criterion", [("euclidean", Criterion::Euclidean), ("geodesic", Criterion::Geodesic)]);
 crate::choice!(Lookup, "lookup", [("triangle", Lookup::Triangle), ("bilinear", Lookup::Bilinear)]);
 crate::choice!(Geodesic, "geodesic", [("arc", Geodesic::Arc), ("chord_sum", Geodesic::ChordSum)]);
-crate::choice!(SamplingPath, "sampling", [("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)]);
+crate::choice!(
+    SamplingPath,
+    "sampling",
+    [("fast", SamplingPath::Fast), ("shared", SamplingPath::Shared), ("exact", SamplingPath::Exact)]
+);
 crate::choice!(Overlaps, "overlaps", [("keep", Overlaps::Keep), ("drop", Overlaps::Drop)]);
 crate::choice!(
     GaussianMethod,

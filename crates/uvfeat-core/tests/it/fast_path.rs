@@ -3,13 +3,12 @@
 //! lying on the sphere of radius r in or out of the ball: one sample in ~160 changes a texel's H
 //! by up to ~2 %, so a few texels in 10^4 differ by that much).
 
-use crate::support::{atlas, median};
-use glam::DVec2;
+use crate::support::{atlas, median, patchwork_sphere};
 use uvfeat_core::features::Feature;
 use uvfeat_core::output::FeatureMaps;
 use uvfeat_core::sampling::SamplingPath;
 use uvfeat_core::settings::ComputeSettings;
-use uvfeat_core::shapes::{torus, uv_sphere, ShapeMesh};
+use uvfeat_core::shapes::{torus, uv_sphere};
 use uvfeat_core::Atlas;
 
 const FEATURES: [Feature; 4] =
@@ -20,27 +19,6 @@ fn maps(atlas: &Atlas, radius: f64, path: SamplingPath) -> FeatureMaps {
     settings.resolution = 128;
     settings.sampling = path;
     FeatureMaps::compute(atlas, &settings).expect("valid settings")
-}
-
-/// The lat-long sphere cut into `blocks` x `blocks` charts, each turned by a quarter turn per
-/// block (so every seam has a rotating transition map) and shrunk into its own slot of the atlas.
-fn patchwork_sphere(blocks: usize) -> ShapeMesh {
-    let mut mesh = uv_sphere(1.0, 96, 48);
-    let mut uvs = Vec::with_capacity(3 * mesh.faces.len());
-    for uv_face in mesh.uv_faces.iter_mut() {
-        let corners = uv_face.map(|k| DVec2::from_array(mesh.uvs[k as usize]));
-        let centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
-        let slot = (centroid * blocks as f64).floor().min(DVec2::splat(blocks as f64 - 1.0));
-        let turn = DVec2::from_angle(std::f64::consts::FRAC_PI_2 * ((slot.x + slot.y) as i32 % 4) as f64);
-        let base = uvs.len() as i64;
-        uvs.extend(corners.map(|c| {
-            let local = c * blocks as f64 - slot - DVec2::splat(0.5);
-            ((slot + DVec2::splat(0.5) + 0.8 * turn.rotate(local)) / blocks as f64).to_array()
-        }));
-        *uv_face = [base, base + 1, base + 2];
-    }
-    mesh.uvs = uvs;
-    mesh
 }
 
 /// Fast and exact maps of every feature agree texel by texel up to the rim flips.

@@ -12,3 +12,4 @@ mod metric;
 mod rasterisation;
 mod reference;
 mod seams;
+mod shared_lattice;

@@ -1,0 +1,220 @@
+//! One sample set shared by a tile of texels (issue 12, `sampling = "shared"`).
+//!
+//! The per-texel samplers draw `N` points for every texel, although the neighbourhoods of nearby
+//! texels cover nearly the same surface: at r = 4 % of a 100K-face torus a texel's ellipse holds
+//! about 800 computation texels, so every surface point was located and evaluated for hundreds of
+//! texels. Here the points are drawn once per tile, on a jittered lattice in the sampling plane of
+//! the tile's centre `c` (its metric ellipse `E`, so that a lattice cell stands for the same
+//! surface area in every direction), located once (the same interior shortcut and exact walk as
+//! the other paths, from `c`), and every texel `t` of the tile keeps the points of its own
+//! sampling domain, the disk of radius `m` (the margin) around its place `w_t = E^-1 (s_t - c)`.
+//! The lattice's spacing gives that disk `N` points on average, as the per-texel pattern has.
+//!
+//! So each texel still sums the same integrand over its own domain with `N` stratified points of
+//! the same weights `dA = J |det M_path| a`; only the strata are shared with the neighbours (the
+//! estimate is a smooth function of the texel, its noise correlated over a tile) instead of turned
+//! per texel. The texels then differ only in the ball test and the sums, which run over
+//! structure-of-arrays f32 columns sorted along the lattice's longer side, so that a texel reads a
+//! contiguous run of them (see `features/lattice_statistics.rs`).
+
+use super::centre::Centre;
+use super::located::locate_target;
+use super::pattern::pcg_hash;
+use super::sample::unit_ellipse;
+use super::settings::SamplerSettings;
+use crate::atlas::Atlas;
+use crate::relocation::Located;
+use glam::{DMat2, DVec2, DVec3, Vec2, Vec3};
+
+/// A lattice point that reached no surface: the path met a mesh border, or no way was found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LostPoint {
+    /// Its place in the sampling plane.
+    pub w: Vec2,
+    /// `true` at a mesh border, `false` when the relocation failed.
+    pub border: bool,
+}
+
+/// The located lattice points of one tile, column by column (f32), sorted by `w[axis]`.
+#[derive(Debug, Clone, Default)]
+pub struct TileLattice {
+    /// Place of each point in the sampling plane of the tile's centre (pattern units: the centre's
+    /// ball has radius about 1 there).
+    pub w: [Vec<f32>; 2],
+    /// Surface point, relative to the patches' origin.
+    pub q: [Vec<f32>; 3],
+    /// Unit normal (empty unless the settings ask for normals).
+    pub normal: [Vec<f32>; 3],
+    /// Surface area the point stands for.
+    pub area: Vec<f32>,
+    /// The column of `w` the points are sorted by.
+    pub axis: usize,
+    /// Points that reached no surface.
+    pub lost: Vec<LostPoint>,
+    /// The margin `m`: a texel's domain is the disk of this radius around its place.
+    pub margin: f32,
+    /// Side of a lattice cell, in pattern units.
+    pub spacing: f32,
+}
+
+/// The sampling plane of a tile: where its texels lie in the pattern units of its centre.
+#[derive(Debug, Clone, Copy)]
+pub struct TilePlane {
+    /// Parametric offset from the centre to pattern units, `E^-1`.
+    pub to_pattern: DMat2,
+    ellipse: DMat2,
+}
+
+impl TilePlane {
+    /// The plane of `centre` with the sampler's radius.
+    pub fn new(centre: &Centre, settings: &SamplerSettings) -> Self {
+        let ellipse = unit_ellipse(centre, settings);
+        Self { to_pattern: ellipse.inverse(), ellipse }
+    }
+
+    /// The place of the parametric point `uv` of the centre's chart.
+    pub fn place(&self, centre: &Centre, uv: DVec2) -> Vec2 {
+        (self.to_pattern * (uv - centre.uv)).as_vec2()
+    }
+}
+
+/// Where the lattice's points lie in their cells: the same offset for every tile, drawn from the
+/// seed (a Cranley–Patterson shift of the whole lattice), so that runs with other seeds measure
+/// the quadrature's own error.
+fn lattice_offset(seed: u64) -> Vec2 {
+    let h = pcg_hash(seed as u32 ^ pcg_hash((seed >> 32) as u32 ^ 0x5eed));
+    Vec2::new((h & 0xffff) as f32, (h >> 16) as f32) / 65_536.0
+}
+
+impl TileLattice {
+    /// Places and locates the lattice covering the domains (disks of radius `margin`) of texels at
+    /// `places` in the plane of `centre`, with `samples` points per domain on average.
+    pub fn build(
+        atlas: &Atlas,
+        centre: &Centre,
+        plane: &TilePlane,
+        places: &[Vec2],
+        samples: usize,
+        seed: u64,
+        settings: &SamplerSettings,
+    ) -> Self {
+        let margin = settings.margin as f32;
+        let (low, high) = places.iter().fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &w| (l.min(w), h.max(w)));
+        let spacing = margin * (std::f32::consts::PI / samples as f32).sqrt();
+        let first = ((low - margin) / spacing).floor();
+        let cells = ((high + margin) / spacing).ceil() - first;
+        let axis = usize::from(high.y - low.y > high.x - low.x);
+        let cell_uv_area = f64::from(spacing * spacing) * plane.ellipse.determinant().abs();
+        let mut lattice = Self { axis, margin, spacing, ..Self::default() };
+        let offset = lattice_offset(seed);
+        for b in 0..cells.y as i32 {
+            for a in 0..cells.x as i32 {
+                let w = (first + Vec2::new(a as f32, b as f32) + offset) * spacing;
+                // Only points some texel's domain holds: within the margin of the places' box.
+                if (w - w.clamp(low, high)).length_squared() >= margin * margin {
+                    continue;
+                }
+                lattice.locate(atlas, centre, plane, w, cell_uv_area, settings);
+            }
+        }
+        lattice.sort();
+        lattice.pad(settings);
+        lattice
+    }
+
+    /// Inert points after the last one, so that a pass reading [`Self::PADDING`] points at a time
+    /// never reads past the columns: far off every domain, at the origin, with no area.
+    pub const PADDING: usize = 8;
+
+    fn pad(&mut self, settings: &SamplerSettings) {
+        for _ in 0..Self::PADDING {
+            self.push_f32(Vec2::INFINITY, Vec3::ZERO, Vec3::ZERO, 0.0, settings);
+        }
+    }
+
+    /// Locates the lattice point `w` from the centre and keeps its surface point.
+    fn locate(&mut self, atlas: &Atlas, centre: &Centre, plane: &TilePlane, w: Vec2, uv_area: f64, settings: &SamplerSettings) {
+        let uv = centre.uv + plane.ellipse * w.as_dvec2();
+        let patches = &atlas.patches.faces;
+        let interior = atlas
+            .texel_coordinates(uv)
+            .map(|(i, j)| atlas.coverage.interior_face.at(i, j))
+            .filter(|&face| patches.get(face as usize).is_some_and(|patch| patch.chart == centre.chart));
+        let (face, uv, m_path) = match interior {
+            Some(face) => (face, uv, DMat2::IDENTITY),
+            None => match locate_target(atlas, centre, uv, settings) {
+                Located::Inside { uv, m_path, face: Some(face), .. } if patches[face as usize].chart >= 0 => {
+                    (face, uv, m_path)
+                }
+                Located::Inside { chart, uv, m_path, face, .. } => {
+                    match settings.lookup.evaluate(atlas, face, uv, chart) {
+                        Some(point) => {
+                            let area = point.area_element * uv_area * m_path.determinant().abs();
+                            self.push(w, point.position - atlas.patches.origin, point.normal, area, settings);
+                        }
+                        None => self.lost.push(LostPoint { w, border: false }),
+                    }
+                    return;
+                }
+                Located::Border => return self.lost.push(LostPoint { w, border: true }),
+                Located::Missing => return self.lost.push(LostPoint { w, border: false }),
+            },
+        };
+        let patch = &patches[face as usize];
+        let local = uv.as_vec2() - Vec2::from_array(patch.uv0);
+        let area = f64::from(patch.area_element) * uv_area * m_path.determinant().abs();
+        let normal = if settings.with_normals { patch.normal_at(local) } else { Vec3::ZERO };
+        self.push_f32(w, patch.position_at(local), normal, area as f32, settings);
+    }
+
+    fn push(&mut self, w: Vec2, relative: DVec3, normal: DVec3, area: f64, settings: &SamplerSettings) {
+        self.push_f32(w, relative.as_vec3(), normal.as_vec3(), area as f32, settings);
+    }
+
+    fn push_f32(&mut self, w: Vec2, relative: Vec3, normal: Vec3, area: f32, settings: &SamplerSettings) {
+        self.w[0].push(w.x);
+        self.w[1].push(w.y);
+        for (column, value) in self.q.iter_mut().zip(relative.to_array()) {
+            column.push(value);
+        }
+        if settings.with_normals {
+            for (column, value) in self.normal.iter_mut().zip(normal.to_array()) {
+                column.push(value);
+            }
+        }
+        self.area.push(area);
+    }
+
+    /// Sorts the points by `w[axis]`, so that a texel's domain is one run of them.
+    fn sort(&mut self) {
+        let mut order: Vec<u32> = (0..self.area.len() as u32).collect();
+        let key = &self.w[self.axis];
+        order.sort_unstable_by(|&a, &b| key[a as usize].total_cmp(&key[b as usize]));
+        let permute = |column: &mut Vec<f32>| {
+            if !column.is_empty() {
+                *column = order.iter().map(|&k| column[k as usize]).collect();
+            }
+        };
+        self.w.iter_mut().chain(&mut self.q).chain(&mut self.normal).for_each(permute);
+        permute(&mut self.area);
+    }
+
+    /// The run of points whose `w[axis]` lies within the margin of `place`.
+    pub fn run(&self, place: Vec2) -> std::ops::Range<usize> {
+        let key = &self.w[self.axis];
+        let at = place[self.axis];
+        let start = key.partition_point(|&x| x <= at - self.margin);
+        let end = key.partition_point(|&x| x < at + self.margin);
+        start..end.max(start)
+    }
+
+    /// Points located.
+    pub fn len(&self) -> usize {
+        self.area.len().saturating_sub(Self::PADDING)
+    }
+
+    /// `true` when no point reached the surface.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}

@@ -1,0 +1,155 @@
+//! The shared lattice (`sampling = "shared"`) against its reference, the exact path, with the same
+//! seeds. The two sample different points (one lattice per tile against one turned pattern per
+//! texel), so they are compared as estimators: both against the analytic truth, where the shared
+//! lattice must be as accurate as the exact path or better, and against each other within the
+//! exact path's own noise.
+
+use crate::support::{atlas, median, patchwork_sphere};
+use glam::{DVec2, DVec3};
+use uvfeat_core::features::Feature;
+use uvfeat_core::lookup::Lookup;
+use uvfeat_core::output::FeatureMaps;
+use uvfeat_core::sampling::{centre_at, SamplingPath};
+use uvfeat_core::settings::ComputeSettings;
+use uvfeat_core::shapes::{ellipsoid, torus, uv_sphere};
+use uvfeat_core::Atlas;
+
+const FEATURES: [Feature; 3] = [Feature::MeanCurvature, Feature::GaussianCurvature, Feature::BendingEnergy];
+
+fn settings(radius: f64, path: SamplingPath) -> ComputeSettings {
+    let mut settings = ComputeSettings::new(FEATURES.to_vec(), radius);
+    settings.resolution = 128;
+    settings.sampling = path;
+    settings
+}
+
+fn maps(atlas: &Atlas, radius: f64, path: SamplingPath) -> FeatureMaps {
+    FeatureMaps::compute(atlas, &settings(radius, path)).expect("valid settings")
+}
+
+/// The analytic `(H, K)` at a surface point.
+type Truth = fn(DVec3) -> (f64, f64);
+
+fn unit_sphere(_: DVec3) -> (f64, f64) {
+    (1.0, 1.0)
+}
+
+fn torus_2_05(p: DVec3) -> (f64, f64) {
+    let (major, minor) = (2.0, 0.5);
+    let cos_v = ((p.x.hypot(p.y) - major) / minor).clamp(-1.0, 1.0);
+    let ring = major + minor * cos_v;
+    ((major + 2.0 * minor * cos_v) / (2.0 * minor * ring), cos_v / (minor * ring))
+}
+
+const AXES: [f64; 3] = [1.0, 0.8, 0.6];
+
+fn ellipsoid_axes(p: DVec3) -> (f64, f64) {
+    let [a, b, c] = AXES;
+    let g = p.x * p.x / a.powi(4) + p.y * p.y / b.powi(4) + p.z * p.z / c.powi(4);
+    let abc2 = (a * b * c).powi(2);
+    let mean = (a * a + b * b + c * c - p.length_squared()) / (2.0 * abc2 * g.powf(1.5));
+    (mean, 1.0 / (abc2 * g * g))
+}
+
+/// Median relative errors of H and K over the texels, against `truth` at each texel's centre.
+fn errors(atlas: &Atlas, maps: &FeatureMaps, truth: Truth) -> [f64; 2] {
+    let w = maps.resolution;
+    let mut out = [0.0; 2];
+    for (k, slot) in out.iter_mut().enumerate() {
+        let pairs: Vec<(f64, f64)> = (0..w * w)
+            .filter(|&t| maps.n_valid[t] > 0)
+            .filter_map(|t| {
+                let uv = DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64);
+                let centre = centre_at(atlas, uv, Lookup::Triangle)?;
+                let exact = if k == 0 { truth(centre.position).0 } else { truth(centre.position).1 };
+                Some((f64::from(maps.values[k][t]) - exact, exact.abs()))
+            })
+            .collect();
+        let scale = median(pairs.iter().map(|p| p.1).collect());
+        *slot = median(pairs.iter().map(|p| p.0.abs()).collect()) / scale;
+    }
+    out
+}
+
+fn assert_as_accurate(name: &str, atlas: &Atlas, radius: f64, truth: Truth) -> [f64; 2] {
+    let (shared, exact) = (maps(atlas, radius, SamplingPath::Shared), maps(atlas, radius, SamplingPath::Exact));
+    assert_eq!(shared.chart, exact.chart);
+    let texels: Vec<usize> = (0..shared.chart.len()).filter(|&t| exact.n_valid[t] > 0).collect();
+    assert!(texels.iter().all(|&t| shared.n_valid[t] > 0), "{name}: a texel without samples");
+    // Both paths draw N points per sampling domain, the lattice in the metric of its tile's centre:
+    // about the same number lands in the balls (3 % fewer near the poles of a lat-long sphere).
+    let valid = |m: &FeatureMaps| texels.iter().map(|&t| u64::from(m.n_valid[t])).sum::<u64>() as f64;
+    let ratio = valid(&shared) / valid(&exact);
+    assert!((ratio - 1.0).abs() < 0.05, "{name}: {ratio} as many samples in the balls");
+    let (e_shared, e_exact) = (errors(atlas, &shared, truth), errors(atlas, &exact, truth));
+    for (k, feature) in ["H", "K"].iter().enumerate() {
+        assert!(
+            e_shared[k] <= 1.1 * e_exact[k] + 2e-3,
+            "{name} {feature}: shared {:.4} against exact {:.4} (median relative error)",
+            e_shared[k],
+            e_exact[k]
+        );
+    }
+    // Bending energy has no closed form here: the two estimates agree within the exact one's noise.
+    let scale = median(texels.iter().map(|&t| f64::from(exact.values[2][t]).abs()).collect());
+    let difference = median(texels.iter().map(|&t| f64::from((shared.values[2][t] - exact.values[2][t]).abs())).collect());
+    assert!(difference < 0.03 * scale, "{name} bending energy: median difference {difference} of {scale}");
+    e_shared
+}
+
+#[test]
+fn the_shared_lattice_is_as_accurate_as_the_exact_path_on_analytic_shapes() {
+    let sphere = assert_as_accurate("sphere", &atlas(&uv_sphere(1.0, 96, 48), 512), 0.3, unit_sphere);
+    assert!(sphere[0] < 5e-3 && sphere[1] < 2e-2, "sphere: median |H - 1| {}, |K - 1| {}", sphere[0], sphere[1]);
+    assert_as_accurate("torus", &atlas(&torus(2.0, 0.5, 96, 48), 512), 0.25, torus_2_05);
+    assert_as_accurate("ellipsoid", &atlas(&ellipsoid(AXES, 96, 48), 512), 0.2, ellipsoid_axes);
+}
+
+#[test]
+fn the_shared_lattice_is_as_accurate_as_the_exact_path_across_many_charts() {
+    let atlas = atlas(&patchwork_sphere(6), 512);
+    assert!(atlas.topology.n_charts >= 36, "{} charts", atlas.topology.n_charts);
+    let [h, k] = assert_as_accurate("patchwork sphere", &atlas, 0.3, unit_sphere);
+    assert!(h < 5e-3 && k < 2e-2, "patchwork sphere: median |H - 1| {h}, |K - 1| {k}");
+}
+
+#[test]
+fn the_shared_lattice_gives_the_same_maps_on_any_number_of_threads() {
+    let atlas = atlas(&torus(2.0, 0.5, 96, 48), 512);
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+        pool.install(|| maps(&atlas, 0.25, SamplingPath::Shared))
+    };
+    let (one, three) = (on(1), on(3));
+    for (feature, (a, b)) in FEATURES.iter().zip(one.values.iter().zip(&three.values)) {
+        let same = a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+        assert!(same, "{feature:?} differs between 1 and 3 threads");
+    }
+    assert_eq!(one.n_valid, three.n_valid);
+}
+
+#[test]
+fn the_seed_shifts_the_lattice() {
+    let atlas = atlas(&uv_sphere(1.0, 96, 48), 512);
+    let first = maps(&atlas, 0.3, SamplingPath::Shared);
+    let mut other = settings(0.3, SamplingPath::Shared);
+    other.seed = 7;
+    let second = FeatureMaps::compute(&atlas, &other).expect("valid settings");
+    let changed = first.values[0].iter().zip(&second.values[0]).filter(|(a, b)| a.is_finite() && a != b).count();
+    assert!(changed > first.summary.texels / 2, "only {changed} texels changed with the seed");
+    assert!(errors(&atlas, &second, unit_sphere)[0] < 5e-3);
+}
+
+#[test]
+fn settings_the_lattice_does_not_serve_take_the_per_texel_fast_path() {
+    let atlas = atlas(&torus(2.0, 0.5, 64, 32), 256);
+    for change in [|s: &mut ComputeSettings| s.adaptive = true, |s: &mut ComputeSettings| s.standard_errors = true] {
+        let (mut shared, mut fast) = (settings(0.25, SamplingPath::Shared), settings(0.25, SamplingPath::Fast));
+        shared.resolution = 48;
+        fast.resolution = 48;
+        change(&mut shared);
+        change(&mut fast);
+        let (a, b) = (FeatureMaps::compute(&atlas, &shared).unwrap(), FeatureMaps::compute(&atlas, &fast).unwrap());
+        assert!(a.values[0].iter().zip(&b.values[0]).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+}
