@@ -230,9 +230,12 @@ class Atlas:
             ``margin`` (1.25), ``grow_margin`` (True: sample again over a larger domain where the
             ellipse did not cover the ball), ``max_jumps`` (32), ``relocation`` ("walk" | "march" | "per_chart"), ``criterion`` ("euclidean" | "geodesic"),
             ``lookup`` ("triangle" | "bilinear"), ``geodesic`` ("arc" | "chord_sum"),
-            ``sampling`` ("fast": samples deep inside their chart are read from the face-id buffer
-            and compact f32 face patches, the others take the exact path; "exact": every sample
-            located and evaluated on its own in f64, the reference of the fast path),
+            ``sampling`` ("shared": the texels of a tile share one regular lattice of samples,
+            located once, where the settings allow it (integral estimators, no adaptive sampling,
+            no standard errors, no geodesic distances), the fast path elsewhere; "fast": per-texel
+            samples deep inside their chart are read from the face-id buffer and compact f32 face
+            patches, the others take the exact path; "exact": every sample located and evaluated
+            on its own in f64, the reference of both),
             ``gaussian_method`` ("moments" | "geodesic_area"), ``volume_weighting``
             ("distance" | "uniform"), ``rho_min`` (0.1, fraction of r), ``flat_tol`` (1e-3),
             ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct"),

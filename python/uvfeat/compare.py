@@ -77,7 +77,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
             sampling: str = DEFAULT_OPTIONS["sampling"],
             truth_levels: int = 2) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
-    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"fast"`` or ``"exact"``) and the
+    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"shared"``, ``"fast"`` or ``"exact"``) and the
     object-space reference on ``mesh`` for ``features`` at ``radius`` (object units or ``"2%"``),
     times both, and measures both against the truth: the reference on the same surface refined
     until it converges (up to ``truth_levels`` midpoint subdivisions, see

@@ -101,7 +101,8 @@ def add_feature_options(parser: argparse.ArgumentParser) -> None:
                         help="curvature estimators: integral invariants or the osculating-circle fit (adds principal "
                         "directions; default %(default)s)")
     parser.add_argument("--sampling", choices=CHOICES["sampling"], default=DEFAULT_OPTIONS["sampling"],
-                        help="sampler: the fast path or the exact path it is checked against (default %(default)s)")
+                        help="sampler: one lattice shared by a tile of texels, per-texel samples (fast), or the exact "
+                        "path both are checked against (default %(default)s)")
 
 
 def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:

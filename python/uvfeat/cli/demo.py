@@ -6,6 +6,7 @@ import os
 import time
 
 from .._core import __version__
+from ..options import DEFAULT_OPTIONS
 from .atlas import write_atlas
 from .common import add_atlas_options, console, load_mesh
 from .compute import write_features
@@ -36,6 +37,6 @@ def run(args) -> int:
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.adaptive, args.paper_mode = 256, False, False
     args.seed, args.query, args.standard_error, args.method, args.directions = 0, "texture", False, "integral", None
-    args.sampling = "fast"
+    args.sampling = DEFAULT_OPTIONS["sampling"]
     write_features(mesh, args, out, [], time.perf_counter())
     return 0

@@ -23,8 +23,17 @@ use super::pattern::pcg_hash;
 use super::sample::unit_ellipse;
 use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
-use crate::relocation::Located;
-use glam::{DMat2, DVec2, DVec3, Vec2, Vec3};
+use crate::relocation::{walk, Home, Located};
+use glam::{DMat2, DVec2, DVec3, IVec2, Vec2, Vec3};
+
+/// How a located lattice point was reached from the centre: the face it lies in and the seams'
+/// linear maps on the way, which its neighbours farther out continue.
+#[derive(Debug, Clone, Copy)]
+struct Route {
+    home: Home,
+    m_path: DMat2,
+    jumps: u32,
+}
 
 /// A lattice point that reached no surface: the path met a mesh border, or no way was found.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,15 +116,36 @@ impl TileLattice {
         let cell_uv_area = f64::from(spacing * spacing) * plane.ellipse.determinant().abs();
         let mut lattice = Self { axis, margin, spacing, ..Self::default() };
         let offset = lattice_offset(seed);
-        for b in 0..cells.y as i32 {
-            for a in 0..cells.x as i32 {
-                let w = (first + Vec2::new(a as f32, b as f32) + offset) * spacing;
-                // Only points some texel's domain holds: within the margin of the places' box.
-                if (w - w.clamp(low, high)).length_squared() >= margin * margin {
-                    continue;
+        let (columns, rows) = (cells.x as i32, cells.y as i32);
+        let index = |cell: IVec2| (cell.y * columns + cell.x) as usize;
+        let place = |cell: IVec2| (first + cell.as_vec2() + offset) * spacing;
+        // Only points some texel's domain holds: within the margin of the places' box.
+        let held = |w: Vec2| (w - w.clamp(low, high)).length_squared() < margin * margin;
+        // First the points in the centre's chart, row by row (in cache order), then the others from
+        // the centre outwards (L1 order), so that the neighbour one cell towards the centre has
+        // been located and its route can be continued.
+        let mut routes: Vec<Option<Route>> = vec![None; (columns * rows) as usize];
+        let mut crossing = Vec::new();
+        for cell in (0..rows).flat_map(|b| (0..columns).map(move |a| IVec2::new(a, b))) {
+            let w = place(cell);
+            if held(w) {
+                match lattice.interior(atlas, centre, plane, w, cell_uv_area, settings) {
+                    Some(route) => routes[index(cell)] = Some(route),
+                    None => crossing.push(cell),
                 }
-                lattice.locate(atlas, centre, plane, w, cell_uv_area, settings);
             }
+        }
+        let home = (-first - offset).round().as_ivec2().clamp(IVec2::ZERO, IVec2::new(columns - 1, rows - 1));
+        crossing.sort_by_key(|cell| (*cell - home).abs().element_sum());
+        for cell in crossing {
+            let towards_home = home - cell;
+            let step = if towards_home.x.abs() >= towards_home.y.abs() {
+                IVec2::new(towards_home.x.signum(), 0)
+            } else {
+                IVec2::new(0, towards_home.y.signum())
+            };
+            let from = routes[index(cell + step)].map(|route| (route, place(cell + step)));
+            routes[index(cell)] = lattice.locate(atlas, centre, plane, place(cell), from, cell_uv_area, settings);
         }
         lattice.sort();
         lattice.pad(settings);
@@ -132,39 +162,88 @@ impl TileLattice {
         }
     }
 
-    /// Locates the lattice point `w` from the centre and keeps its surface point.
-    fn locate(&mut self, atlas: &Atlas, centre: &Centre, plane: &TilePlane, w: Vec2, uv_area: f64, settings: &SamplerSettings) {
+    /// Keeps the lattice point `w` when it lies well inside the centre's chart (the fast path's
+    /// shortcut: one table load, no walk), with its route; `None` when it may lie elsewhere.
+    fn interior(
+        &mut self,
+        atlas: &Atlas,
+        centre: &Centre,
+        plane: &TilePlane,
+        w: Vec2,
+        uv_area: f64,
+        settings: &SamplerSettings,
+    ) -> Option<Route> {
         let uv = centre.uv + plane.ellipse * w.as_dvec2();
         let patches = &atlas.patches.faces;
-        let interior = atlas
-            .texel_coordinates(uv)
-            .map(|(i, j)| atlas.coverage.interior_face.at(i, j))
-            .filter(|&face| patches.get(face as usize).is_some_and(|patch| patch.chart == centre.chart));
-        let (face, uv, m_path) = match interior {
-            Some(face) => (face, uv, DMat2::IDENTITY),
-            None => match locate_target(atlas, centre, uv, settings) {
-                Located::Inside { uv, m_path, face: Some(face), .. } if patches[face as usize].chart >= 0 => {
-                    (face, uv, m_path)
-                }
-                Located::Inside { chart, uv, m_path, face, .. } => {
-                    match settings.lookup.evaluate(atlas, face, uv, chart) {
-                        Some(point) => {
-                            let area = point.area_element * uv_area * m_path.determinant().abs();
-                            self.push(w, point.position - atlas.patches.origin, point.normal, area, settings);
-                        }
-                        None => self.lost.push(LostPoint { w, border: false }),
+        let (i, j) = atlas.texel_coordinates(uv)?;
+        let face = atlas.coverage.interior_face.at(i, j);
+        patches.get(face as usize).filter(|patch| patch.chart == centre.chart)?;
+        let inside = Located::Inside { chart: centre.chart, uv, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) };
+        self.keep(atlas, w, inside, uv_area, settings)
+    }
+
+    /// Locates the lattice point `w` off the centre's chart interior and keeps its surface point:
+    /// it continues the route of `from`, its neighbour one cell towards the centre, by one lattice
+    /// step (a walk of a face or so instead of one from the centre), or walks from the centre when
+    /// the neighbour has no route. Returns the point's own route.
+    #[allow(clippy::too_many_arguments)]
+    fn locate(
+        &mut self,
+        atlas: &Atlas,
+        centre: &Centre,
+        plane: &TilePlane,
+        w: Vec2,
+        from: Option<(Route, Vec2)>,
+        uv_area: f64,
+        settings: &SamplerSettings,
+    ) -> Option<Route> {
+        let located = match from {
+            Some((route, w_from)) => {
+                let target = route.home.point + route.m_path * (plane.ellipse * (w - w_from).as_dvec2());
+                match walk(atlas, &route.home, target, settings.max_jumps.saturating_sub(route.jumps)) {
+                    Located::Inside { chart, uv, m_path, jumps, face } => {
+                        Located::Inside { chart, uv, m_path: m_path * route.m_path, jumps: jumps + route.jumps, face }
                     }
-                    return;
+                    other => other,
                 }
-                Located::Border => return self.lost.push(LostPoint { w, border: true }),
-                Located::Missing => return self.lost.push(LostPoint { w, border: false }),
-            },
+            }
+            None => locate_target(atlas, centre, centre.uv + plane.ellipse * w.as_dvec2(), settings),
         };
-        let patch = &patches[face as usize];
-        let local = uv.as_vec2() - Vec2::from_array(patch.uv0);
-        let area = f64::from(patch.area_element) * uv_area * m_path.determinant().abs();
-        let normal = if settings.with_normals { patch.normal_at(local) } else { Vec3::ZERO };
-        self.push_f32(w, patch.position_at(local), normal, area as f32, settings);
+        self.keep(atlas, w, located, uv_area, settings)
+    }
+
+    /// Keeps the surface point of the lattice point `w` located at `located` (or counts it lost)
+    /// and returns its route.
+    fn keep(&mut self, atlas: &Atlas, w: Vec2, located: Located, uv_area: f64, settings: &SamplerSettings) -> Option<Route> {
+        let patches = &atlas.patches.faces;
+        match located {
+            Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches[face as usize].chart >= 0 => {
+                let patch = &patches[face as usize];
+                let local = uv.as_vec2() - Vec2::from_array(patch.uv0);
+                let area = f64::from(patch.area_element) * uv_area * m_path.determinant().abs();
+                let normal = if settings.with_normals { patch.normal_at(local) } else { Vec3::ZERO };
+                self.push_f32(w, patch.position_at(local), normal, area as f32, settings);
+                Some(Route { home: Home { face, point: uv }, m_path, jumps })
+            }
+            Located::Inside { chart, uv, m_path, face, .. } => {
+                match settings.lookup.evaluate(atlas, face, uv, chart) {
+                    Some(point) => {
+                        let area = point.area_element * uv_area * m_path.determinant().abs();
+                        self.push(w, point.position - atlas.patches.origin, point.normal, area, settings);
+                    }
+                    None => self.lost.push(LostPoint { w, border: false }),
+                }
+                None
+            }
+            Located::Border => {
+                self.lost.push(LostPoint { w, border: true });
+                None
+            }
+            Located::Missing => {
+                self.lost.push(LostPoint { w, border: false });
+                None
+            }
+        }
     }
 
     fn push(&mut self, w: Vec2, relative: DVec3, normal: DVec3, area: f64, settings: &SamplerSettings) {

@@ -66,10 +66,10 @@ pub enum Overlaps {
 pub enum SamplingPath {
     /// Feature maps sample one jittered lattice per tile of texels, located once and shared by
     /// every texel whose sampling domain it covers (see `sampling/lattice.rs`); texels and
-    /// settings it does not serve take the fast path.
-    Shared,
-    /// Interior samples straight from the face-id buffer and the f32 patches (default).
+    /// settings it does not serve take the fast path (default).
     #[default]
+    Shared,
+    /// Interior samples straight from the face-id buffer and the f32 patches.
     Fast,
     /// Every sample located and evaluated on its own, in f64.
     Exact,

@@ -33,7 +33,8 @@ pub struct ComputeSettings {
     pub lookup: Lookup,
     /// Geodesic distance estimate of the geodesic-area K and criterion (arc; chord sum = paper).
     pub geodesic: Geodesic,
-    /// Fast path for interior samples (default) or the exact path everywhere (its reference).
+    /// Shared lattice per tile (default), per-texel fast path, or the exact path everywhere (the
+    /// reference of both).
     pub sampling: SamplingPath,
     /// Surface reached along two routes through seams: kept (default) or counted once.
     pub overlaps: Overlaps,
@@ -72,7 +73,7 @@ impl ComputeSettings {
             criterion: Criterion::Euclidean,
             lookup: Lookup::Triangle,
             geodesic: Geodesic::Arc,
-            sampling: SamplingPath::Fast,
+            sampling: SamplingPath::Shared,
             overlaps: Overlaps::Keep,
             seed: 0,
             adaptive: false,

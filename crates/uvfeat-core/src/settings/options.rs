@@ -61,7 +61,7 @@ crate::choice!(Geodesic, "geodesic", [("arc", Geodesic::Arc), ("chord_sum", Geod
 crate::choice!(
     SamplingPath,
     "sampling",
-    [("fast", SamplingPath::Fast), ("shared", SamplingPath::Shared), ("exact", SamplingPath::Exact)]
+    [("shared", SamplingPath::Shared), ("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)]
 );
 crate::choice!(Overlaps, "overlaps", [("keep", Overlaps::Keep), ("drop", Overlaps::Drop)]);
 crate::choice!(
