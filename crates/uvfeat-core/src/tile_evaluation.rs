@@ -2,16 +2,18 @@
 //! in the tile share one located lattice of samples (`sampling/lattice.rs`) and each sums its own
 //! domain of it (`features/lattice_statistics.rs`). A texel the lattice cannot serve is evaluated
 //! on its own by [`evaluate_point`], with the per-texel fast path: one the tile's centre does not
-//! reach without a crossing (another arm of a non-convex chart), and one whose ball reached the
-//! rim of its domain, where the coverage check grows the domain per direction.
+//! reach without a crossing (another arm of a non-convex chart), and the texels of a tile whose
+//! lattice would hold more points than their patterns (balls smaller than the texel spacing). Where balls reach the rim of their
+//! domains, the coverage check grows the domain once for the tile, and those texels sum a second
+//! lattice over it.
 
 use crate::atlas::Atlas;
 use crate::evaluation::{evaluate_point, Patterns, PixelResult};
-use crate::features::{lattice_statistics, CurvatureMethod, LatticeTexel, VolumeWeighting};
+use crate::features::{lattice_statistics, CurvatureMethod, VolumeWeighting};
 use crate::relocation::{walk, Located};
 use crate::sampling::{
-    centre_at, fast_path_applies, Centre, Overlaps, Placement, Sample, SamplingPath, TileLattice,
-    TilePlane, EDGE_RADIUS,
+    centre_at, fast_path_applies, grown_reach, Centre, LatticeTexel, Overlaps, Placement, Reach, Sample,
+    SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
 use glam::{DVec2, Vec2};
@@ -67,21 +69,60 @@ pub fn evaluate_tile(
         });
         alone.extend(unreached.into_iter().map(|(k, _)| k));
         let plane = TilePlane::new(&centre, &sampler);
-        let places: Vec<Vec2> = shared.iter().map(|(_, member)| plane.place(&centre, member.uv)).collect();
-        let lattice = TileLattice::build(atlas, &centre, &plane, &places, settings.samples, settings.seed, &sampler);
-        let origin = atlas.patches.origin;
-        for ((k, member), place) in shared.into_iter().zip(places) {
-            let texel = LatticeTexel {
-                place,
-                position: (member.position - origin).as_vec3(),
-                normal: member.normal.as_vec3(),
-            };
-            let hood = lattice_statistics(&lattice, &texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals);
+        let texels: Vec<(usize, LatticeTexel)> = shared
+            .iter()
+            .map(|(k, member)| {
+                let place = plane.place(&centre, member.uv);
+                let position = (member.position - atlas.patches.origin).as_vec3();
+                (*k, LatticeTexel { place, position, normal: member.normal.as_vec3() })
+            })
+            .collect();
+        let places: Vec<Vec2> = texels.iter().map(|(_, texel)| texel.place).collect();
+        let disk = Reach::uniform(sampler.margin);
+        let Some(lattice) =
+            TileLattice::build(atlas, &centre, &plane, &places, &disk, settings.samples, settings.seed, &sampler)
+        else {
+            alone.extend(texels.into_iter().map(|(k, _)| k));
+            continue;
+        };
+        let mut rim = Vec::new();
+        let mut marked = [false; DIRECTIONS];
+        let centre_texel = LatticeTexel {
+            place: Vec2::ZERO,
+            position: (centre.position - atlas.patches.origin).as_vec3(),
+            normal: centre.normal.as_vec3(),
+        };
+        let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
+            lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
+        };
+        let shift = sums(&lattice, &centre_texel, 0.0).stats.normal_curvature.mean();
+        let shift = if shift.is_finite() { shift } else { 0.0 };
+        for (k, texel) in texels {
+            let hood = sums(&lattice, &texel, shift);
             if hood.rim && settings.grow_margin {
-                alone.push(k);
+                let directions = lattice.rim_directions(&texel, settings.radius, EDGE_RADIUS as f32);
+                marked.iter_mut().zip(directions).for_each(|(m, d)| *m |= d);
+                rim.push((k, texel));
             } else {
                 results[k] = PixelResult::estimated(&hood.stats, None, hood.counts, settings);
             }
+        }
+        if rim.is_empty() {
+            continue;
+        }
+        // Where the balls reached the rim, the domain grows as the coverage check grows a single
+        // texel's, from the tile's centre, and the rim texels sum a lattice over the grown domain.
+        let reach = grown_reach(atlas, &centre, &sampler, &marked);
+        let places: Vec<Vec2> = rim.iter().map(|(_, texel)| texel.place).collect();
+        let Some(lattice) =
+            TileLattice::build(atlas, &centre, &plane, &places, &reach, settings.samples, settings.seed, &sampler)
+        else {
+            alone.extend(rim.into_iter().map(|(k, _)| k));
+            continue;
+        };
+        for (k, texel) in rim {
+            let hood = sums(&lattice, &texel, shift);
+            results[k] = PixelResult::estimated(&hood.stats, None, hood.counts, settings);
         }
     }
     for k in alone {

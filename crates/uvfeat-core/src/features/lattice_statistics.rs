@@ -11,25 +11,20 @@
 //! moments need one `1 / rho^2`.
 
 use super::statistics::{NeighbourhoodStats, StatsSettings, WeightedSums};
-use crate::sampling::{SampleCounts, TileLattice};
-use glam::{Vec2, Vec3};
+use crate::sampling::{LatticeTexel, SampleCounts, TileLattice, DIRECTIONS};
+use std::f32::consts::{FRAC_PI_2, PI, TAU};
 
 /// Width of the ball's edge ramp, in lattice cells (see `lattice_statistics`).
 const RAMP: f32 = 2.0;
 
+/// Where a ramp `width` wide (in units of `r`) is centred so that it weighs a disk of radius `r`
+/// exactly: a linear ramp centred at `c` covers `pi (c^2 + width^2 / 12)`.
+fn ramp_centre(width: f32) -> f32 {
+    (1.0 - width * width / 12.0).sqrt()
+}
+
 /// Points summed at once (one AVX2 register of f32).
 const LANES: usize = TileLattice::PADDING;
-
-/// A texel as its tile's lattice sees it.
-#[derive(Debug, Clone, Copy)]
-pub struct LatticeTexel {
-    /// Its place in the lattice's sampling plane.
-    pub place: Vec2,
-    /// Its centre `p`, relative to the patches' origin.
-    pub position: Vec3,
-    /// Its unit normal.
-    pub normal: Vec3,
-}
 
 /// The neighbourhood of one texel on its tile's lattice.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -71,16 +66,27 @@ struct Thresholds {
     /// The ball's edge as a ramp: `clamp((ramp_end - rho) / ramp_width, 0, 1)`.
     ramp_end: f32,
     inverse_ramp_width: f32,
+    /// The normal curvatures are summed less this value (see `lattice_statistics`).
+    shift: f32,
+    /// A grown domain's margin per direction, the first repeated at the end.
+    reach: [f32; DIRECTIONS + 1],
 }
 
 /// The statistics of `texel` over `lattice`, where a point at `rim_fraction` of the margin or more
 /// marks the rim. `with_normals` adds the bending integrand (the lattice then carries normals).
+///
+/// The normal curvatures `k_i` are summed as `k_i - curvature_shift` and the sums shifted back in
+/// f64: the principal curvatures read `sqrt(Var(k))`, which near an umbilic is the small
+/// difference `<k^2> - <k>^2` of two numbers near `H^2`, and f32 sums of `k^2` lose it (k1 of a
+/// sphere moved by 4e-4 when the mesh's normals did by 1e-16). A shift near the neighbourhood's
+/// `<k>` (the tile centre's own) keeps the f32 terms small.
 pub fn lattice_statistics(
     lattice: &TileLattice,
     texel: &LatticeTexel,
     settings: &StatsSettings,
     rim_fraction: f32,
     with_normals: bool,
+    curvature_shift: f64,
 ) -> LatticeNeighbourhood {
     let r = settings.radius as f32;
     let rho_min = settings.rho_min as f32;
@@ -93,19 +99,19 @@ pub fn lattice_statistics(
         rho_min2: rho_min * rho_min,
         inverse_radius: 1.0 / r,
         inverse_radius2: 1.0 / (r * r),
-        ramp_end: r * (1.0 + 0.5 * RAMP * lattice.spacing),
+        ramp_end: r * (ramp_centre(RAMP * lattice.spacing) + 0.5 * RAMP * lattice.spacing),
         inverse_ramp_width: 1.0 / (r * RAMP * lattice.spacing),
+        shift: curvature_shift as f32,
+        reach: std::array::from_fn(|k| lattice.reach.margin(k % DIRECTIONS) as f32),
     };
+    let grown = !lattice.reach.is_uniform();
     let run = lattice.run(texel.place);
-    #[cfg(target_arch = "x86_64")]
-    let lanes = if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-        // SAFETY: the CPU has the features `sums_avx2` is compiled for (checked just above).
-        unsafe { sums_avx2(lattice, texel, &thresholds, run, with_normals) }
-    } else {
-        sums(lattice, texel, &thresholds, run, with_normals)
+    let lanes = match (grown, with_normals) {
+        (false, false) => dispatch::<false, false>(lattice, texel, &thresholds, run),
+        (false, true) => dispatch::<false, true>(lattice, texel, &thresholds, run),
+        (true, false) => dispatch::<true, false>(lattice, texel, &thresholds, run),
+        (true, true) => dispatch::<true, true>(lattice, texel, &thresholds, run),
     };
-    #[cfg(not(target_arch = "x86_64"))]
-    let lanes = sums(lattice, texel, &thresholds, run, with_normals);
     let total = |column: &[f32; LANES]| column.iter().map(|&x| f64::from(x)).sum::<f64>();
     let sums = |w: &[f32; LANES], wg: &[f32; LANES], wg2: Option<&[f32; LANES]>| WeightedSums {
         w: total(w),
@@ -118,12 +124,13 @@ pub fn lattice_statistics(
         elevation,
         radial: sums(&lanes.elevation_w, &lanes.radial_wg, None),
         bending: sums(&lanes.bending_w, &lanes.bending_wg, None),
-        normal_curvature: sums(&lanes.curvature_w, &lanes.curvature_wg, Some(&lanes.curvature_wg2)),
+        normal_curvature: unshifted(sums(&lanes.curvature_w, &lanes.curvature_wg, Some(&lanes.curvature_wg2)), curvature_shift),
         geodesic_disk: WeightedSums { w: total(&lanes.area), w2: total(&lanes.area2), wg: 0.0, wg2: 0.0 },
     };
     let mut counts = SampleCounts { valid: total(&lanes.valid) as u32, ..SampleCounts::default() };
     for lost in &lattice.lost {
-        if (lost.w - texel.place).length_squared() < thresholds.margin2 {
+        let dw = lost.w - texel.place;
+        if dw.length() < lattice.reach.at(f64::from(dw.y.atan2(dw.x))) as f32 {
             if lost.border {
                 counts.border += 1;
             } else {
@@ -134,29 +141,77 @@ pub fn lattice_statistics(
     LatticeNeighbourhood { stats, counts, rim: lanes.rim.iter().any(|&x| x > 0.0) }
 }
 
-/// [`sums`] compiled for AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn sums_avx2(
+/// The sums of `k` from the sums of `k - shift` (`sum w k^2 = sum w (k - s)^2 + 2 s sum w (k - s) + s^2 sum w`).
+fn unshifted(sums: WeightedSums, shift: f64) -> WeightedSums {
+    WeightedSums {
+        wg: sums.wg + shift * sums.w,
+        wg2: sums.wg2 + 2.0 * shift * sums.wg + shift * shift * sums.w,
+        ..sums
+    }
+}
+
+/// [`sums`] in the copy compiled for AVX2 and FMA where the CPU has them.
+fn dispatch<const GROWN: bool, const NORMALS: bool>(
     lattice: &TileLattice,
     texel: &LatticeTexel,
     thresholds: &Thresholds,
     run: std::ops::Range<usize>,
-    with_normals: bool,
 ) -> Lanes {
-    sums(lattice, texel, thresholds, run, with_normals)
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+        // SAFETY: the CPU has the features `sums_avx2` is compiled for (checked just above).
+        return unsafe { sums_avx2::<GROWN, NORMALS>(lattice, texel, thresholds, run) };
+    }
+    sums::<GROWN, NORMALS>(lattice, texel, thresholds, run)
+}
+
+/// [`sums`] compiled for AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn sums_avx2<const GROWN: bool, const NORMALS: bool>(
+    lattice: &TileLattice,
+    texel: &LatticeTexel,
+    thresholds: &Thresholds,
+    run: std::ops::Range<usize>,
+) -> Lanes {
+    sums::<GROWN, NORMALS>(lattice, texel, thresholds, run)
+}
+
+/// `atan2(y, x)` to about 1e-5 radians, without a library call (so that it vectorises).
+#[inline(always)]
+fn fast_atan2(y: f32, x: f32) -> f32 {
+    let (ax, ay) = (x.abs(), y.abs());
+    let a = ax.min(ay) / ax.max(ay).max(f32::MIN_POSITIVE);
+    let s = a * a;
+    let r = ((-0.046_496_475 * s + 0.159_314_22) * s - 0.327_622_76) * s * a + a;
+    let r = if ay > ax { FRAC_PI_2 - r } else { r };
+    let r = if x < 0.0 { PI - r } else { r };
+    if y < 0.0 {
+        -r
+    } else {
+        r
+    }
+}
+
+/// The margin of a grown domain in direction `(x, y)`, interpolated as `Reach::at` does.
+#[inline(always)]
+fn grown_margin(reach: &[f32; DIRECTIONS + 1], x: f32, y: f32) -> f32 {
+    let turns = fast_atan2(y, x) / TAU;
+    let t = (turns - turns.floor()) * DIRECTIONS as f32;
+    let below = (t as usize).min(DIRECTIONS - 1);
+    let weight = t - below as f32;
+    reach[below] * (1.0 - weight) + reach[below + 1] * weight
 }
 
 /// The lane sums over the points of `run`, `LANES` at a time. The lattice's columns are padded
 /// with inert points (see `TileLattice::PADDING`, equal to `LANES`), so a chunk may read past the run: points
 /// outside the run lie outside the texel's domain and the domain test drops them.
 #[inline(always)]
-fn sums(
+fn sums<const GROWN: bool, const NORMALS: bool>(
     lattice: &TileLattice,
     texel: &LatticeTexel,
     t: &Thresholds,
     run: std::ops::Range<usize>,
-    with_normals: bool,
 ) -> Lanes {
     let mut lanes = Lanes::default();
     let (place, p, n) = (texel.place, texel.position, texel.normal);
@@ -166,7 +221,7 @@ fn sums(
         let (qx, qy, qz) = (chunk(&lattice.q[0], k), chunk(&lattice.q[1], k), chunk(&lattice.q[2], k));
         let area = chunk(&lattice.area, k);
         let mut bend = [0.0f32; LANES];
-        if with_normals {
+        if NORMALS {
             let (nx, ny, nz) = (chunk(&lattice.normal[0], k), chunk(&lattice.normal[1], k), chunk(&lattice.normal[2], k));
             for l in 0..LANES {
                 let (ex, ey, ez) = (n.x - nx[l], n.y - ny[l], n.z - nz[l]);
@@ -178,7 +233,12 @@ fn sums(
             let dw2 = dwx * dwx + dwy * dwy;
             let (dx, dy, dz) = (qx[l] - p.x, qy[l] - p.y, qz[l] - p.z);
             let d2 = dx * dx + dy * dy + dz * dz;
-            let in_domain = dw2 < t.margin2 && d2 > t.inner2;
+            let in_domain = if GROWN {
+                let margin = grown_margin(&t.reach, dwx, dwy);
+                dw2 < margin * margin
+            } else {
+                dw2 < t.margin2
+            } && d2 > t.inner2;
             let accepted = in_domain && d2 < t.outer2;
             let distance = d2.sqrt();
             let inside = ((t.ramp_end - distance) * t.inverse_ramp_width).clamp(0.0, 1.0);
@@ -187,15 +247,18 @@ fn sums(
             let inverse_d2 = 1.0 / d2.max(t.inner2);
             let elevation = n.x * dx + n.y * dy + n.z * dz;
             lanes.valid[l] += if accepted { 1.0 } else { 0.0 };
-            lanes.rim[l] += if accepted && dw2 >= t.rim2 { 1.0 } else { 0.0 };
+            // A grown domain is final: the coverage check gathers twice at most.
+            lanes.rim[l] += if !GROWN && accepted && dw2 >= t.rim2 { 1.0 } else { 0.0 };
             lanes.area[l] += a;
             lanes.area2[l] += a * a;
             lanes.elevation_w[l] += a * distance;
             lanes.elevation_wg[l] += a * elevation;
             lanes.radial_wg[l] += a * d2 * t.inverse_radius;
-            lanes.curvature_w[l] += curved * d2 * t.inverse_radius2;
-            lanes.curvature_wg[l] += -2.0 * curved * elevation * t.inverse_radius2;
-            lanes.curvature_wg2[l] += 4.0 * curved * elevation * elevation * t.inverse_radius2 * inverse_d2;
+            let weight = curved * d2 * t.inverse_radius2;
+            let shifted = -2.0 * elevation * inverse_d2 - t.shift;
+            lanes.curvature_w[l] += weight;
+            lanes.curvature_wg[l] += weight * shifted;
+            lanes.curvature_wg2[l] += weight * shifted * shifted;
             lanes.bending_w[l] += curved;
             lanes.bending_wg[l] += curved * bend[l] * inverse_d2;
         }

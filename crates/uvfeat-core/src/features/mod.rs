@@ -19,7 +19,7 @@ pub use gaussian_curvature::{
     gaussian_curvature_geodesic_area, gaussian_curvature_geodesic_area_error, gaussian_curvature_moments,
     GaussianMethod,
 };
-pub use lattice_statistics::{lattice_statistics, LatticeNeighbourhood, LatticeTexel};
+pub use lattice_statistics::{lattice_statistics, LatticeNeighbourhood};
 pub use mean_curvature::{mean_curvature, mean_curvature_error, radial_correction};
 pub use open_volume::{ball_volume, open_volume, open_volume_error};
 pub use principal_curvatures::principal_curvatures;

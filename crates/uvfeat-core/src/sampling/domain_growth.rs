@@ -91,10 +91,24 @@ fn probe(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, reach: &mut 
     }
 }
 
+/// The reach of `centre` grown from the sampler's margin where the ball reached the rim of the
+/// domain in the `marked` directions: probes set each direction's margin (up to [`MAX_MARGIN`];
+/// marked directions the probes left alone grow by half).
+pub fn grown_reach(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, marked: &[bool; DIRECTIONS]) -> Reach {
+    let before = Reach::uniform(sampler.margin);
+    let mut reach = before;
+    probe(atlas, centre, sampler, &mut reach);
+    for (k, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
+        if reach.margin(k) == before.margin(k) {
+            reach.set_margin(k, (reach.margin(k) * GROWTH).min(MAX_MARGIN));
+        }
+    }
+    reach
+}
+
 /// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` placed by
 /// `placement` and the margin of `sampler` in every direction. With `grow`, where accepted samples
-/// reach the rim, probes set each direction's margin (up to [`MAX_MARGIN`]; rim directions the
-/// probes left alone grow by half) and the neighbourhood is gathered once more. Returns the counts
+/// reach the rim, the domain grows ([`grown_reach`]) and the neighbourhood is gathered once more. Returns the counts
 /// and the final reach (for a second stage).
 ///
 /// Two gathers at most: a third, for rim samples left between the probed directions, doubled the
@@ -109,7 +123,7 @@ pub fn gather_covering(
     grow: bool,
     out: &mut Vec<Sample>,
 ) -> (SampleCounts, Reach) {
-    let mut reach = Reach::uniform(sampler.margin);
+    let reach = Reach::uniform(sampler.margin);
     out.clear();
     let counts = gather(atlas, centre, pattern, placement, &reach, sampler, out);
     if !grow {
@@ -120,12 +134,7 @@ pub fn gather_covering(
         return (counts, reach);
     }
     let before = reach;
-    probe(atlas, centre, sampler, &mut reach);
-    for (k, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
-        if reach.margin(k) == before.margin(k) {
-            reach.set_margin(k, (reach.margin(k) * GROWTH).min(MAX_MARGIN));
-        }
-    }
+    let reach = grown_reach(atlas, centre, sampler, &marked);
     if reach == before {
         return (counts, reach);
     }

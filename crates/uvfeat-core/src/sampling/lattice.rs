@@ -21,6 +21,7 @@ use super::centre::Centre;
 use super::located::locate_target;
 use super::pattern::pcg_hash;
 use super::sample::unit_ellipse;
+use super::reach::{Reach, DIRECTIONS};
 use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
 use crate::relocation::{walk, Home, Located};
@@ -45,7 +46,7 @@ pub struct LostPoint {
 }
 
 /// The located lattice points of one tile, column by column (f32), sorted by `w[axis]`.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct TileLattice {
     /// Place of each point in the sampling plane of the tile's centre (pattern units: the centre's
     /// ball has radius about 1 there).
@@ -60,10 +61,24 @@ pub struct TileLattice {
     pub axis: usize,
     /// Points that reached no surface.
     pub lost: Vec<LostPoint>,
-    /// The margin `m`: a texel's domain is the disk of this radius around its place.
+    /// The domain of every texel around its place: the margin per direction (see [`Reach`]), a
+    /// disk of radius `m` unless the coverage check grew it.
+    pub reach: Reach,
+    /// The largest margin of `reach`.
     pub margin: f32,
     /// Side of a lattice cell, in pattern units.
     pub spacing: f32,
+}
+
+/// A texel as its tile's lattice sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct LatticeTexel {
+    /// Its place in the lattice's sampling plane.
+    pub place: Vec2,
+    /// Its centre `p`, relative to the patches' origin.
+    pub position: Vec3,
+    /// Its unit normal.
+    pub normal: Vec3,
 }
 
 /// The sampling plane of a tile: where its texels lie in the pattern units of its centre.
@@ -96,31 +111,51 @@ fn lattice_offset(seed: u64) -> Vec2 {
 }
 
 impl TileLattice {
-    /// Places and locates the lattice covering the domains (disks of radius `margin`) of texels at
-    /// `places` in the plane of `centre`, with `samples` points per domain on average.
+    /// Places and locates the lattice covering the domains (`reach` around each place) of texels at
+    /// `places` in the plane of `centre`, with `samples` points per disk of the sampler's margin;
+    /// `None` where it would hold more cells than `samples` per texel.
     pub fn build(
         atlas: &Atlas,
         centre: &Centre,
         plane: &TilePlane,
         places: &[Vec2],
+        reach: &Reach,
         samples: usize,
         seed: u64,
         settings: &SamplerSettings,
-    ) -> Self {
-        let margin = settings.margin as f32;
+    ) -> Option<Self> {
+        let margin = (0..DIRECTIONS).map(|k| reach.margin(k)).fold(0.0, f64::max) as f32;
         let (low, high) = places.iter().fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &w| (l.min(w), h.max(w)));
-        let spacing = margin * (std::f32::consts::PI / samples as f32).sqrt();
+        let spacing = settings.margin as f32 * (std::f32::consts::PI / samples as f32).sqrt();
         let first = ((low - margin) / spacing).floor();
         let cells = ((high + margin) / spacing).ceil() - first;
+        // Where the texels lie far apart against their balls (a radius below the texel spacing),
+        // one lattice over them would locate more points than the texels' own patterns.
+        if !(f64::from(cells.x) * f64::from(cells.y) <= (samples * places.len()) as f64) {
+            return None;
+        }
         let axis = usize::from(high.y - low.y > high.x - low.x);
         let cell_uv_area = f64::from(spacing * spacing) * plane.ellipse.determinant().abs();
-        let mut lattice = Self { axis, margin, spacing, ..Self::default() };
+        let mut lattice = Self {
+            w: Default::default(),
+            q: Default::default(),
+            normal: Default::default(),
+            area: Vec::new(),
+            axis,
+            lost: Vec::new(),
+            reach: *reach,
+            margin,
+            spacing,
+        };
         let offset = lattice_offset(seed);
         let (columns, rows) = (cells.x as i32, cells.y as i32);
         let index = |cell: IVec2| (cell.y * columns + cell.x) as usize;
         let place = |cell: IVec2| (first + cell.as_vec2() + offset) * spacing;
-        // Only points some texel's domain holds: within the margin of the places' box.
-        let held = |w: Vec2| (w - w.clamp(low, high)).length_squared() < margin * margin;
+        // Only points some texel's domain holds: within the reach of the places' box.
+        let held = |w: Vec2| {
+            let out = w - w.clamp(low, high);
+            out == Vec2::ZERO || out.length() < reach.at(f64::from(out.y.atan2(out.x))) as f32
+        };
         // First the points in the centre's chart, row by row (in cache order), then the others from
         // the centre outwards (L1 order), so that the neighbour one cell towards the centre has
         // been located and its route can be continued.
@@ -149,7 +184,7 @@ impl TileLattice {
         }
         lattice.sort();
         lattice.pad(settings);
-        lattice
+        Some(lattice)
     }
 
     /// Inert points after the last one, so that a pass reading [`Self::PADDING`] points at a time
@@ -285,6 +320,24 @@ impl TileLattice {
         let start = key.partition_point(|&x| x <= at - self.margin);
         let end = key.partition_point(|&x| x < at + self.margin);
         start..end.max(start)
+    }
+
+    /// The directions (see [`Reach`]) in which points of `texel`'s disk domain that lie in the ball
+    /// of `radius` reach `rim_fraction` of the margin or more: where its domain must grow.
+    pub fn rim_directions(&self, texel: &LatticeTexel, radius: f64, rim_fraction: f32) -> [bool; DIRECTIONS] {
+        let mut marked = [false; DIRECTIONS];
+        let (outer, rim) = ((radius * radius) as f32, (rim_fraction * self.margin).powi(2));
+        for k in self.run(texel.place) {
+            let dw = Vec2::new(self.w[0][k], self.w[1][k]) - texel.place;
+            let q = Vec3::new(self.q[0][k], self.q[1][k], self.q[2][k]);
+            let dw2 = dw.length_squared();
+            if dw2 >= rim && dw2 < self.margin * self.margin && q.distance_squared(texel.position) < outer {
+                let (below, above, _) = Reach::bracket(f64::from(dw.y.atan2(dw.x)));
+                marked[below] = true;
+                marked[above] = true;
+            }
+        }
+        marked
     }
 
     /// Points located.
