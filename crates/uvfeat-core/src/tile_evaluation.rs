@@ -68,11 +68,11 @@ pub fn evaluate_tile(
                 )
         });
         alone.extend(unreached.into_iter().map(|(k, _)| k));
-        let plane = TilePlane::new(&centre, &sampler);
+        let plane = TilePlane::new(centre, &sampler);
         let texels: Vec<(usize, LatticeTexel)> = shared
             .iter()
             .map(|(k, member)| {
-                let place = plane.place(&centre, member.uv);
+                let place = plane.place(member.uv);
                 let position = (member.position - atlas.patches.origin).as_vec3();
                 (*k, LatticeTexel { place, position, normal: member.normal.as_vec3() })
             })
@@ -80,7 +80,7 @@ pub fn evaluate_tile(
         let places: Vec<Vec2> = texels.iter().map(|(_, texel)| texel.place).collect();
         let disk = Reach::uniform(sampler.margin);
         let Some(lattice) =
-            TileLattice::build(atlas, &centre, &plane, &places, &disk, settings.samples, settings.seed, &sampler)
+            TileLattice::build(atlas, &plane, &places, &disk, settings.samples, settings.seed, &sampler)
         else {
             alone.extend(texels.into_iter().map(|(k, _)| k));
             continue;
@@ -115,7 +115,7 @@ pub fn evaluate_tile(
         let reach = grown_reach(atlas, &centre, &sampler, &marked);
         let places: Vec<Vec2> = rim.iter().map(|(_, texel)| texel.place).collect();
         let Some(lattice) =
-            TileLattice::build(atlas, &centre, &plane, &places, &reach, settings.samples, settings.seed, &sampler)
+            TileLattice::build(atlas, &plane, &places, &reach, settings.samples, settings.seed, &sampler)
         else {
             alone.extend(rim.into_iter().map(|(k, _)| k));
             continue;

@@ -84,6 +84,8 @@ pub struct LatticeTexel {
 /// The sampling plane of a tile: where its texels lie in the pattern units of its centre.
 #[derive(Debug, Clone, Copy)]
 pub struct TilePlane {
+    /// The tile's centre.
+    pub centre: Centre,
     /// Parametric offset from the centre to pattern units, `E^-1`.
     pub to_pattern: DMat2,
     ellipse: DMat2,
@@ -91,14 +93,19 @@ pub struct TilePlane {
 
 impl TilePlane {
     /// The plane of `centre` with the sampler's radius.
-    pub fn new(centre: &Centre, settings: &SamplerSettings) -> Self {
-        let ellipse = unit_ellipse(centre, settings);
-        Self { to_pattern: ellipse.inverse(), ellipse }
+    pub fn new(centre: Centre, settings: &SamplerSettings) -> Self {
+        let ellipse = unit_ellipse(&centre, settings);
+        Self { centre, to_pattern: ellipse.inverse(), ellipse }
     }
 
     /// The place of the parametric point `uv` of the centre's chart.
-    pub fn place(&self, centre: &Centre, uv: DVec2) -> Vec2 {
-        (self.to_pattern * (uv - centre.uv)).as_vec2()
+    pub fn place(&self, uv: DVec2) -> Vec2 {
+        (self.to_pattern * (uv - self.centre.uv)).as_vec2()
+    }
+
+    /// The parametric point of the centre's chart at place `w`.
+    fn uv(&self, w: Vec2) -> DVec2 {
+        self.centre.uv + self.ellipse * w.as_dvec2()
     }
 }
 
@@ -116,7 +123,6 @@ impl TileLattice {
     /// `None` where it would hold more cells than `samples` per texel.
     pub fn build(
         atlas: &Atlas,
-        centre: &Centre,
         plane: &TilePlane,
         places: &[Vec2],
         reach: &Reach,
@@ -164,23 +170,23 @@ impl TileLattice {
         for cell in (0..rows).flat_map(|b| (0..columns).map(move |a| IVec2::new(a, b))) {
             let w = place(cell);
             if held(w) {
-                match lattice.interior(atlas, centre, plane, w, cell_uv_area, settings) {
+                match lattice.interior(atlas, plane, w, cell_uv_area, settings) {
                     Some(route) => routes[index(cell)] = Some(route),
                     None => crossing.push(cell),
                 }
             }
         }
-        let home = (-first - offset).round().as_ivec2().clamp(IVec2::ZERO, IVec2::new(columns - 1, rows - 1));
-        crossing.sort_by_key(|cell| (*cell - home).abs().element_sum());
+        let origin = (-first - offset).round().as_ivec2().clamp(IVec2::ZERO, IVec2::new(columns - 1, rows - 1));
+        crossing.sort_by_key(|cell| (*cell - origin).abs().element_sum());
         for cell in crossing {
-            let towards_home = home - cell;
-            let step = if towards_home.x.abs() >= towards_home.y.abs() {
-                IVec2::new(towards_home.x.signum(), 0)
+            let towards_centre = origin - cell;
+            let step = if towards_centre.x.abs() >= towards_centre.y.abs() {
+                IVec2::new(towards_centre.x.signum(), 0)
             } else {
-                IVec2::new(0, towards_home.y.signum())
+                IVec2::new(0, towards_centre.y.signum())
             };
             let from = routes[index(cell + step)].map(|route| (route, place(cell + step)));
-            routes[index(cell)] = lattice.locate(atlas, centre, plane, place(cell), from, cell_uv_area, settings);
+            routes[index(cell)] = lattice.locate(atlas, plane, place(cell), from, cell_uv_area, settings);
         }
         lattice.sort();
         lattice.pad(settings);
@@ -202,13 +208,12 @@ impl TileLattice {
     fn interior(
         &mut self,
         atlas: &Atlas,
-        centre: &Centre,
         plane: &TilePlane,
         w: Vec2,
         uv_area: f64,
         settings: &SamplerSettings,
     ) -> Option<Route> {
-        let uv = centre.uv + plane.ellipse * w.as_dvec2();
+        let (uv, centre) = (plane.uv(w), &plane.centre);
         let patches = &atlas.patches.faces;
         let (i, j) = atlas.texel_coordinates(uv)?;
         let face = atlas.coverage.interior_face.at(i, j);
@@ -221,11 +226,9 @@ impl TileLattice {
     /// it continues the route of `from`, its neighbour one cell towards the centre, by one lattice
     /// step (a walk of a face or so instead of one from the centre), or walks from the centre when
     /// the neighbour has no route. Returns the point's own route.
-    #[allow(clippy::too_many_arguments)]
     fn locate(
         &mut self,
         atlas: &Atlas,
-        centre: &Centre,
         plane: &TilePlane,
         w: Vec2,
         from: Option<(Route, Vec2)>,
@@ -242,7 +245,7 @@ impl TileLattice {
                     other => other,
                 }
             }
-            None => locate_target(atlas, centre, centre.uv + plane.ellipse * w.as_dvec2(), settings),
+            None => locate_target(atlas, &plane.centre, plane.uv(w), settings),
         };
         self.keep(atlas, w, located, uv_area, settings)
     }

@@ -162,9 +162,9 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
     let centre = centre_at(&atlas, DVec2::new(0.5, 0.5), Lookup::Triangle).expect("a centre");
     let build = |radius: f64| {
         let sampler = settings(radius, SamplingPath::Shared).sampler();
-        let plane = TilePlane::new(&centre, &sampler);
-        let places: Vec<Vec2> = [DVec2::ZERO, DVec2::new(0.03, 0.01)].map(|uv| plane.place(&centre, centre.uv + uv)).to_vec();
-        (TileLattice::build(&atlas, &centre, &plane, &places, &Reach::uniform(1.25), 256, 0, &sampler), places)
+        let plane = TilePlane::new(centre, &sampler);
+        let places: Vec<Vec2> = [DVec2::ZERO, DVec2::new(0.03, 0.01)].map(|uv| plane.place(centre.uv + uv)).to_vec();
+        (TileLattice::build(&atlas, &plane, &places, &Reach::uniform(1.25), 256, 0, &sampler), places)
     };
     // Texels 20 balls apart: one lattice over both would hold more points than their patterns.
     assert!(build(0.001).0.is_none());
