@@ -12,7 +12,7 @@ use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{lattice_statistics, CurvatureMethod, VolumeWeighting};
 use crate::relocation::{walk, Located};
 use crate::sampling::{
-    centre_at, fast_path_applies, grown_reach, Centre, LatticeTexel, Overlaps, Placement, Reach, Sample,
+    centre_at, fast_path_applies, grown_reach, Centre, LatticeTexel, LatticeDomain, Overlaps, Placement, Sample,
     SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
@@ -78,9 +78,9 @@ pub fn evaluate_tile(
             })
             .collect();
         let places: Vec<Vec2> = texels.iter().map(|(_, texel)| texel.place).collect();
-        let disk = Reach::uniform(sampler.margin);
+        let disks = LatticeDomain::Disks(sampler.margin);
         let Some(lattice) =
-            TileLattice::build(atlas, &plane, &places, &disk, settings.samples, settings.seed, &sampler)
+            TileLattice::build(atlas, &plane, &places, disks, settings.samples, settings.seed, &sampler)
         else {
             alone.extend(texels.into_iter().map(|(k, _)| k));
             continue;
@@ -95,27 +95,38 @@ pub fn evaluate_tile(
         let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
             lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
         };
-        let shift = sums(&lattice, &centre_texel, 0.0).stats.normal_curvature.mean();
-        let shift = if shift.is_finite() { shift } else { 0.0 };
-        for (k, texel) in texels {
-            let hood = sums(&lattice, &texel, shift);
-            if hood.rim && settings.grow_margin {
-                let directions = lattice.rim_directions(&texel, settings.radius, EDGE_RADIUS as f32);
-                marked.iter_mut().zip(directions).for_each(|(m, d)| *m |= d);
-                rim.push((k, texel));
-            } else {
-                results[k] = PixelResult::estimated(&hood.stats, None, hood.counts, settings);
+        let at_centre = sums(&lattice, &centre_texel, 0.0);
+        let shift = Some(at_centre.stats.normal_curvature.mean()).filter(|k| k.is_finite()).unwrap_or(0.0);
+        let mut mark = |texel: &LatticeTexel| {
+            let directions = lattice.rim_directions(texel, settings.radius, EDGE_RADIUS as f32);
+            marked.iter_mut().zip(directions).for_each(|(m, d)| *m |= d);
+        };
+        if at_centre.rim && settings.grow_margin {
+            // The ball reaches past the disk at the centre already (large radii): every texel of
+            // the tile samples the grown domain, without a pass over the disk first.
+            mark(&centre_texel);
+            rim = texels;
+        } else {
+            for (k, texel) in texels {
+                let hood = sums(&lattice, &texel, shift);
+                if hood.rim && settings.grow_margin {
+                    mark(&texel);
+                    rim.push((k, texel));
+                } else {
+                    results[k] = PixelResult::estimated(&hood.stats, None, hood.counts, settings);
+                }
             }
         }
         if rim.is_empty() {
             continue;
         }
         // Where the balls reached the rim, the domain grows as the coverage check grows a single
-        // texel's, from the tile's centre, and the rim texels sum a lattice over the grown domain.
+        // texel's, from the tile's centre, and the rim texels sum a lattice over that domain.
         let reach = grown_reach(atlas, &centre, &sampler, &marked);
         let places: Vec<Vec2> = rim.iter().map(|(_, texel)| texel.place).collect();
+        let grown = LatticeDomain::Grown(reach);
         let Some(lattice) =
-            TileLattice::build(atlas, &plane, &places, &reach, settings.samples, settings.seed, &sampler)
+            TileLattice::build(atlas, &plane, &places, grown, settings.samples, settings.seed, &sampler)
         else {
             alone.extend(rim.into_iter().map(|(k, _)| k));
             continue;

@@ -11,8 +11,7 @@
 //! moments need one `1 / rho^2`.
 
 use super::statistics::{NeighbourhoodStats, StatsSettings, WeightedSums};
-use crate::sampling::{LatticeTexel, SampleCounts, TileLattice, DIRECTIONS};
-use std::f32::consts::{FRAC_PI_2, PI, TAU};
+use crate::sampling::{LatticeDomain, LatticeTexel, SampleCounts, TileLattice};
 
 /// Width of the ball's edge ramp, in lattice cells (see `lattice_statistics`).
 const RAMP: f32 = 2.0;
@@ -68,8 +67,6 @@ struct Thresholds {
     inverse_ramp_width: f32,
     /// The normal curvatures are summed less this value (see `lattice_statistics`).
     shift: f32,
-    /// A grown domain's margin per direction, the first repeated at the end.
-    reach: [f32; DIRECTIONS + 1],
 }
 
 /// The statistics of `texel` over `lattice`, where a point at `rim_fraction` of the margin or more
@@ -91,9 +88,11 @@ pub fn lattice_statistics(
     let r = settings.radius as f32;
     let rho_min = settings.rho_min as f32;
     let margin = lattice.margin;
+    // A grown domain is shared by every texel and final (the coverage check gathers twice at most).
+    let grown = matches!(lattice.domain, LatticeDomain::Grown(_));
     let thresholds = Thresholds {
-        margin2: margin * margin,
-        rim2: (rim_fraction * margin).powi(2),
+        margin2: if grown { f32::INFINITY } else { margin * margin },
+        rim2: if grown { f32::INFINITY } else { (rim_fraction * margin).powi(2) },
         inner2: (1e-6 * r) * (1e-6 * r),
         outer2: r * r,
         rho_min2: rho_min * rho_min,
@@ -102,15 +101,12 @@ pub fn lattice_statistics(
         ramp_end: r * (ramp_centre(RAMP * lattice.spacing) + 0.5 * RAMP * lattice.spacing),
         inverse_ramp_width: 1.0 / (r * RAMP * lattice.spacing),
         shift: curvature_shift as f32,
-        reach: std::array::from_fn(|k| lattice.reach.margin(k % DIRECTIONS) as f32),
     };
-    let grown = !lattice.reach.is_uniform();
     let run = lattice.run(texel.place);
-    let lanes = match (grown, with_normals) {
-        (false, false) => dispatch::<false, false>(lattice, texel, &thresholds, run),
-        (false, true) => dispatch::<false, true>(lattice, texel, &thresholds, run),
-        (true, false) => dispatch::<true, false>(lattice, texel, &thresholds, run),
-        (true, true) => dispatch::<true, true>(lattice, texel, &thresholds, run),
+    let lanes = if with_normals {
+        dispatch::<true>(lattice, texel, &thresholds, run)
+    } else {
+        dispatch::<false>(lattice, texel, &thresholds, run)
     };
     let total = |column: &[f32; LANES]| column.iter().map(|&x| f64::from(x)).sum::<f64>();
     let sums = |w: &[f32; LANES], wg: &[f32; LANES], wg2: Option<&[f32; LANES]>| WeightedSums {
@@ -129,8 +125,7 @@ pub fn lattice_statistics(
     };
     let mut counts = SampleCounts { valid: total(&lanes.valid) as u32, ..SampleCounts::default() };
     for lost in &lattice.lost {
-        let dw = lost.w - texel.place;
-        if dw.length() < lattice.reach.at(f64::from(dw.y.atan2(dw.x))) as f32 {
+        if (lost.w - texel.place).length_squared() < thresholds.margin2 {
             if lost.border {
                 counts.border += 1;
             } else {
@@ -151,7 +146,7 @@ fn unshifted(sums: WeightedSums, shift: f64) -> WeightedSums {
 }
 
 /// [`sums`] in the copy compiled for AVX2 and FMA where the CPU has them.
-fn dispatch<const GROWN: bool, const NORMALS: bool>(
+fn dispatch<const NORMALS: bool>(
     lattice: &TileLattice,
     texel: &LatticeTexel,
     thresholds: &Thresholds,
@@ -160,54 +155,28 @@ fn dispatch<const GROWN: bool, const NORMALS: bool>(
     #[cfg(target_arch = "x86_64")]
     if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
         // SAFETY: the CPU has the features `sums_avx2` is compiled for (checked just above).
-        return unsafe { sums_avx2::<GROWN, NORMALS>(lattice, texel, thresholds, run) };
+        return unsafe { sums_avx2::<NORMALS>(lattice, texel, thresholds, run) };
     }
-    sums::<GROWN, NORMALS>(lattice, texel, thresholds, run)
+    sums::<NORMALS>(lattice, texel, thresholds, run)
 }
 
 /// [`sums`] compiled for AVX2 and FMA.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn sums_avx2<const GROWN: bool, const NORMALS: bool>(
+unsafe fn sums_avx2<const NORMALS: bool>(
     lattice: &TileLattice,
     texel: &LatticeTexel,
     thresholds: &Thresholds,
     run: std::ops::Range<usize>,
 ) -> Lanes {
-    sums::<GROWN, NORMALS>(lattice, texel, thresholds, run)
-}
-
-/// `atan2(y, x)` to about 1e-5 radians, without a library call (so that it vectorises).
-#[inline(always)]
-fn fast_atan2(y: f32, x: f32) -> f32 {
-    let (ax, ay) = (x.abs(), y.abs());
-    let a = ax.min(ay) / ax.max(ay).max(f32::MIN_POSITIVE);
-    let s = a * a;
-    let r = ((-0.046_496_475 * s + 0.159_314_22) * s - 0.327_622_76) * s * a + a;
-    let r = if ay > ax { FRAC_PI_2 - r } else { r };
-    let r = if x < 0.0 { PI - r } else { r };
-    if y < 0.0 {
-        -r
-    } else {
-        r
-    }
-}
-
-/// The margin of a grown domain in direction `(x, y)`, interpolated as `Reach::at` does.
-#[inline(always)]
-fn grown_margin(reach: &[f32; DIRECTIONS + 1], x: f32, y: f32) -> f32 {
-    let turns = fast_atan2(y, x) / TAU;
-    let t = (turns - turns.floor()) * DIRECTIONS as f32;
-    let below = (t as usize).min(DIRECTIONS - 1);
-    let weight = t - below as f32;
-    reach[below] * (1.0 - weight) + reach[below + 1] * weight
+    sums::<NORMALS>(lattice, texel, thresholds, run)
 }
 
 /// The lane sums over the points of `run`, `LANES` at a time. The lattice's columns are padded
 /// with inert points (see `TileLattice::PADDING`, equal to `LANES`), so a chunk may read past the run: points
 /// outside the run lie outside the texel's domain and the domain test drops them.
 #[inline(always)]
-fn sums<const GROWN: bool, const NORMALS: bool>(
+fn sums<const NORMALS: bool>(
     lattice: &TileLattice,
     texel: &LatticeTexel,
     t: &Thresholds,
@@ -233,12 +202,7 @@ fn sums<const GROWN: bool, const NORMALS: bool>(
             let dw2 = dwx * dwx + dwy * dwy;
             let (dx, dy, dz) = (qx[l] - p.x, qy[l] - p.y, qz[l] - p.z);
             let d2 = dx * dx + dy * dy + dz * dz;
-            let in_domain = if GROWN {
-                let margin = grown_margin(&t.reach, dwx, dwy);
-                dw2 < margin * margin
-            } else {
-                dw2 < t.margin2
-            } && d2 > t.inner2;
+            let in_domain = dw2 < t.margin2 && d2 > t.inner2;
             let accepted = in_domain && d2 < t.outer2;
             let distance = d2.sqrt();
             let inside = ((t.ramp_end - distance) * t.inverse_ramp_width).clamp(0.0, 1.0);
@@ -247,8 +211,7 @@ fn sums<const GROWN: bool, const NORMALS: bool>(
             let inverse_d2 = 1.0 / d2.max(t.inner2);
             let elevation = n.x * dx + n.y * dy + n.z * dz;
             lanes.valid[l] += if accepted { 1.0 } else { 0.0 };
-            // A grown domain is final: the coverage check gathers twice at most.
-            lanes.rim[l] += if !GROWN && accepted && dw2 >= t.rim2 { 1.0 } else { 0.0 };
+            lanes.rim[l] += if accepted && dw2 >= t.rim2 { 1.0 } else { 0.0 };
             lanes.area[l] += a;
             lanes.area2[l] += a * a;
             lanes.elevation_w[l] += a * distance;

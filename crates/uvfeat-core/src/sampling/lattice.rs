@@ -61,10 +61,9 @@ pub struct TileLattice {
     pub axis: usize,
     /// Points that reached no surface.
     pub lost: Vec<LostPoint>,
-    /// The domain of every texel around its place: the margin per direction (see [`Reach`]), a
-    /// disk of radius `m` unless the coverage check grew it.
-    pub reach: Reach,
-    /// The largest margin of `reach`.
+    /// The domains it covers.
+    pub domain: LatticeDomain,
+    /// The radius of a texel's disk, or of the grown domain around the centre.
     pub margin: f32,
     /// Side of a lattice cell, in pattern units.
     pub spacing: f32,
@@ -117,22 +116,44 @@ fn lattice_offset(seed: u64) -> Vec2 {
     Vec2::new((h & 0xffff) as f32, (h >> 16) as f32) / 65_536.0
 }
 
+/// The sampling domains a lattice covers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LatticeDomain {
+    /// Every texel's own disk of this radius (the margin) around its place.
+    Disks(f64),
+    /// One star-shaped domain around the tile's centre for every texel, grown by the coverage
+    /// check (see [`Reach`]), widened by the farthest texel's distance from the centre so that it
+    /// holds that texel's ball wherever the centre's does.
+    Grown(Reach),
+}
+
 impl TileLattice {
-    /// Places and locates the lattice covering the domains (`reach` around each place) of texels at
-    /// `places` in the plane of `centre`, with `samples` points per disk of the sampler's margin;
-    /// `None` where it would hold more cells than `samples` per texel.
+    /// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
+    /// centre, with `samples` points per domain; `None` where it would hold more cells than
+    /// `samples` per texel.
     pub fn build(
         atlas: &Atlas,
         plane: &TilePlane,
         places: &[Vec2],
-        reach: &Reach,
+        domain: LatticeDomain,
         samples: usize,
         seed: u64,
         settings: &SamplerSettings,
     ) -> Option<Self> {
-        let margin = (0..DIRECTIONS).map(|k| reach.margin(k)).fold(0.0, f64::max) as f32;
-        let (low, high) = places.iter().fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &w| (l.min(w), h.max(w)));
-        let spacing = settings.margin as f32 * (std::f32::consts::PI / samples as f32).sqrt();
+        let (mut low, mut high) =
+            places.iter().fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &w| (l.min(w), h.max(w)));
+        let (margin, reach, widening) = match domain {
+            LatticeDomain::Disks(margin) => (margin as f32, Reach::uniform(margin), 0.0),
+            LatticeDomain::Grown(reach) => {
+                let widest = (0..DIRECTIONS).map(|k| reach.margin(k)).fold(0.0, f64::max) as f32;
+                let farthest = places.iter().map(|w| w.length()).fold(0.0, f32::max);
+                (low, high) = (Vec2::ZERO, Vec2::ZERO);
+                (widest + farthest, reach, farthest)
+            }
+        };
+        // `samples` points per domain, as the per-texel pattern spreads its points over a grown one.
+        let domain_area = std::f64::consts::PI * (0..DIRECTIONS).map(|k| reach.margin(k).powi(2)).sum::<f64>() / DIRECTIONS as f64;
+        let spacing = (domain_area / samples as f64).sqrt() as f32;
         let first = ((low - margin) / spacing).floor();
         let cells = ((high + margin) / spacing).ceil() - first;
         // Where the texels lie far apart against their balls (a radius below the texel spacing),
@@ -149,7 +170,7 @@ impl TileLattice {
             area: Vec::new(),
             axis,
             lost: Vec::new(),
-            reach: *reach,
+            domain,
             margin,
             spacing,
         };
@@ -157,10 +178,11 @@ impl TileLattice {
         let (columns, rows) = (cells.x as i32, cells.y as i32);
         let index = |cell: IVec2| (cell.y * columns + cell.x) as usize;
         let place = |cell: IVec2| (first + cell.as_vec2() + offset) * spacing;
-        // Only points some texel's domain holds: within the reach of the places' box.
+        // Only points some texel's domain holds: within the margin of the places' box, or within
+        // the grown domain of the centre.
         let held = |w: Vec2| {
             let out = w - w.clamp(low, high);
-            out == Vec2::ZERO || out.length() < reach.at(f64::from(out.y.atan2(out.x))) as f32
+            out == Vec2::ZERO || out.length() < reach.at(f64::from(out.y.atan2(out.x))) as f32 + widening
         };
         // First the points in the centre's chart, row by row (in cache order), then the others from
         // the centre outwards (L1 order), so that the neighbour one cell towards the centre has
@@ -316,8 +338,12 @@ impl TileLattice {
         permute(&mut self.area);
     }
 
-    /// The run of points whose `w[axis]` lies within the margin of `place`.
+    /// The run of points whose `w[axis]` lies within the margin of `place` (every point of a grown
+    /// domain, which all texels share).
     pub fn run(&self, place: Vec2) -> std::ops::Range<usize> {
+        if let LatticeDomain::Grown(_) = self.domain {
+            return 0..self.len();
+        }
         let key = &self.w[self.axis];
         let at = place[self.axis];
         let start = key.partition_point(|&x| x <= at - self.margin);

@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3, Vec2};
 use uvfeat_core::features::Feature;
 use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::FeatureMaps;
-use uvfeat_core::sampling::{centre_at, Reach, SamplingPath, TileLattice, TilePlane};
+use uvfeat_core::sampling::{centre_at, LatticeDomain, SamplingPath, TileLattice, TilePlane};
 use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::shapes::{ellipsoid, torus, uv_sphere};
 use uvfeat_core::Atlas;
@@ -164,7 +164,7 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
         let sampler = settings(radius, SamplingPath::Shared).sampler();
         let plane = TilePlane::new(centre, &sampler);
         let places: Vec<Vec2> = [DVec2::ZERO, DVec2::new(0.03, 0.01)].map(|uv| plane.place(centre.uv + uv)).to_vec();
-        (TileLattice::build(&atlas, &plane, &places, &Reach::uniform(1.25), 256, 0, &sampler), places)
+        (TileLattice::build(&atlas, &plane, &places, LatticeDomain::Disks(1.25), 256, 0, &sampler), places)
     };
     // Texels 20 balls apart: one lattice over both would hold more points than their patterns.
     assert!(build(0.001).0.is_none());
