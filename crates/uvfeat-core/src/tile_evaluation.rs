@@ -1,11 +1,12 @@
-//! Stage 5 on a tile of texels at once (`sampling = "shared"`, issue 12): the texels of each chart
-//! in the tile share one located lattice of samples (`sampling/lattice.rs`) and each sums its own
-//! domain of it (`features/lattice_statistics.rs`). A texel the lattice cannot serve is evaluated
-//! on its own by [`evaluate_point`], with the per-texel fast path: one the tile's centre does not
-//! reach without a crossing (another arm of a non-convex chart), and the texels of a tile whose
-//! lattice would hold more points than their patterns (balls smaller than the texel spacing). Where balls reach the rim of their
-//! domains, the coverage check grows the domain once for the tile, and those texels sum a second
-//! lattice over it.
+//! Stage 5 on a tile of texels at once (`sampling = "shared"`, issue 12). The texels of one chart
+//! in a tile form groups, each of the texels its centre reaches without a crossing (several where
+//! a non-convex chart has arms in the tile); a group shares one located lattice of samples
+//! (`sampling/lattice.rs`) and each texel sums its own domain of it
+//! (`features/lattice_statistics.rs`). Where balls reach the rim of their domains, the coverage
+//! check grows the domain once for the group, and those texels sum a second lattice over it. A
+//! texel no lattice serves is evaluated on its own by [`evaluate_point`] with the per-texel fast
+//! path: those of a group whose lattice would hold far more points than their patterns (balls
+//! smaller than the texel spacing), and those left after a few groups of one chart.
 
 use crate::atlas::Atlas;
 use crate::evaluation::{evaluate_point, Patterns, PixelResult};
@@ -38,7 +39,10 @@ pub fn texel_uv(t: usize, w: usize) -> DVec2 {
     DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64)
 }
 
-/// Evaluates the texels `texels` (indices into the `w`² computation texture) of tile `tile`.
+/// Groups of one chart a tile is split into at most (each reaches its texels from its centre).
+const MAX_GROUPS: usize = 16;
+
+/// Evaluates the texels `texels` (indices into the `w`² computation texture) of one tile.
 pub fn evaluate_tile(
     atlas: &Atlas,
     settings: &ComputeSettings,
@@ -48,7 +52,6 @@ pub fn evaluate_tile(
 ) -> Vec<PixelResult> {
     let w = settings.resolution;
     let sampler = settings.sampler();
-    let stats_settings = settings.stats();
     let centres: Vec<Option<Centre>> =
         texels.iter().map(|&t| centre_at(atlas, texel_uv(t, w), settings.lookup)).collect();
     let mut results = vec![PixelResult::EMPTY; texels.len()];
@@ -57,84 +60,25 @@ pub fn evaluate_tile(
     charts.sort_unstable();
     charts.dedup();
     for chart in charts {
-        let members: Vec<(usize, Centre)> =
+        let mut members: Vec<(usize, Centre)> =
             centres.iter().enumerate().filter_map(|(k, c)| c.filter(|c| c.chart == chart).map(|c| (k, c))).collect();
-        let centre = tile_centre(&members);
-        let (shared, unreached): (Vec<_>, Vec<_>) = members.into_iter().partition(|(_, member)| {
-            member.uv == centre.uv
-                || matches!(
-                    walk(atlas, &centre.home, member.uv, sampler.max_jumps),
-                    Located::Inside { jumps: 0, chart, .. } if chart == centre.chart
-                )
-        });
-        alone.extend(unreached.into_iter().map(|(k, _)| k));
-        let plane = TilePlane::new(centre, &sampler);
-        let texels: Vec<(usize, LatticeTexel)> = shared
-            .iter()
-            .map(|(k, member)| {
-                let place = plane.place(member.uv);
-                let position = (member.position - atlas.patches.origin).as_vec3();
-                (*k, LatticeTexel { place, position, normal: member.normal.as_vec3() })
-            })
-            .collect();
-        let places: Vec<Vec2> = texels.iter().map(|(_, texel)| texel.place).collect();
-        let disks = LatticeDomain::Disks(sampler.margin);
-        let Some(lattice) =
-            TileLattice::build(atlas, &plane, &places, disks, settings.samples, settings.seed, &sampler)
-        else {
-            alone.extend(texels.into_iter().map(|(k, _)| k));
-            continue;
-        };
-        let mut rim = Vec::new();
-        let mut marked = [false; DIRECTIONS];
-        let centre_texel = LatticeTexel {
-            place: Vec2::ZERO,
-            position: (centre.position - atlas.patches.origin).as_vec3(),
-            normal: centre.normal.as_vec3(),
-        };
-        let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
-            lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
-        };
-        let at_centre = sums(&lattice, &centre_texel, 0.0);
-        let shift = Some(at_centre.stats.normal_curvature.mean()).filter(|k| k.is_finite()).unwrap_or(0.0);
-        let mut mark = |texel: &LatticeTexel| {
-            let directions = lattice.rim_directions(texel, settings.radius, EDGE_RADIUS as f32);
-            marked.iter_mut().zip(directions).for_each(|(m, d)| *m |= d);
-        };
-        if at_centre.rim && settings.grow_margin {
-            // The ball reaches past the disk at the centre already (large radii): every texel of
-            // the tile samples the grown domain, without a pass over the disk first.
-            mark(&centre_texel);
-            rim = texels;
-        } else {
-            for (k, texel) in texels {
-                let hood = sums(&lattice, &texel, shift);
-                if hood.rim && settings.grow_margin {
-                    mark(&texel);
-                    rim.push((k, texel));
-                } else {
-                    results[k] = PixelResult::estimated(&hood.stats, None, hood.counts, settings);
-                }
-            }
+        // The texels the group's centre reaches without a crossing share its lattice; the others
+        // (another arm of a non-convex chart) form the next group.
+        for _ in 0..MAX_GROUPS {
+            let Some(centre) = group_centre(&members) else { break };
+            let (shared, unreached): (Vec<_>, Vec<_>) = members.into_iter().partition(|(_, member)| {
+                member.uv == centre.uv
+                    || matches!(
+                        walk(atlas, &centre.home, member.home.point, sampler.max_jumps),
+                        Located::Inside { jumps: 0, chart, .. } if chart == centre.chart
+                    )
+            });
+            members = unreached;
+            let Group { results: done, alone: left } = evaluate_group(atlas, settings, centre, &shared);
+            done.into_iter().for_each(|(k, result)| results[k] = result);
+            alone.extend(left);
         }
-        if rim.is_empty() {
-            continue;
-        }
-        // Where the balls reached the rim, the domain grows as the coverage check grows a single
-        // texel's, from the tile's centre, and the rim texels sum a lattice over that domain.
-        let reach = grown_reach(atlas, &centre, &sampler, &marked);
-        let places: Vec<Vec2> = rim.iter().map(|(_, texel)| texel.place).collect();
-        let grown = LatticeDomain::Grown(reach);
-        let Some(lattice) =
-            TileLattice::build(atlas, &plane, &places, grown, settings.samples, settings.seed, &sampler)
-        else {
-            alone.extend(rim.into_iter().map(|(k, _)| k));
-            continue;
-        };
-        for (k, texel) in rim {
-            let hood = sums(&lattice, &texel, shift);
-            results[k] = PixelResult::estimated(&hood.stats, None, hood.counts, settings);
-        }
+        alone.extend(members.into_iter().map(|(k, _)| k));
     }
     for k in alone {
         let t = texels[k];
@@ -144,8 +88,80 @@ pub fn evaluate_tile(
     results
 }
 
-/// The member nearest the members' mean location: the centre of the tile's sampling plane.
-fn tile_centre(members: &[(usize, Centre)]) -> Centre {
-    let mean = members.iter().map(|(_, c)| c.uv).sum::<DVec2>() / members.len() as f64;
-    members.iter().map(|(_, c)| *c).min_by(|a, b| a.uv.distance_squared(mean).total_cmp(&b.uv.distance_squared(mean))).unwrap()
+/// What a group's lattices gave: results by texel, and the texels they could not serve.
+struct Group {
+    results: Vec<(usize, PixelResult)>,
+    alone: Vec<usize>,
+}
+
+/// Evaluates the texels `members` of one chart around `centre`, which reaches them all.
+fn evaluate_group(atlas: &Atlas, settings: &ComputeSettings, centre: Centre, members: &[(usize, Centre)]) -> Group {
+    let sampler = settings.sampler();
+    let stats_settings = settings.stats();
+    let mut group = Group { results: Vec::with_capacity(members.len()), alone: Vec::new() };
+    let plane = TilePlane::new(centre, &sampler);
+    let texel = |member: &Centre| LatticeTexel {
+        place: plane.place(member.uv),
+        position: (member.position - atlas.patches.origin).as_vec3(),
+        normal: member.normal.as_vec3(),
+    };
+    let texels: Vec<(usize, LatticeTexel)> = members.iter().map(|(k, member)| (*k, texel(member))).collect();
+    let build = |texels: &[(usize, LatticeTexel)], domain: LatticeDomain| {
+        let places: Vec<Vec2> = texels.iter().map(|(_, texel)| texel.place).collect();
+        TileLattice::build(atlas, &plane, &places, domain, settings.samples, settings.seed, &sampler)
+    };
+    let Some(lattice) = build(&texels, LatticeDomain::Disks(sampler.margin)) else {
+        group.alone.extend(members.iter().map(|(k, _)| *k));
+        return group;
+    };
+    let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
+        lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
+    };
+    let centre_texel = texel(&centre);
+    let at_centre = sums(&lattice, &centre_texel, 0.0);
+    let shift = Some(at_centre.stats.normal_curvature.mean()).filter(|k| k.is_finite()).unwrap_or(0.0);
+    let mut marked = [false; DIRECTIONS];
+    let mut mark = |texel: &LatticeTexel| {
+        let directions = lattice.rim_directions(texel, settings.radius, EDGE_RADIUS as f32);
+        marked.iter_mut().zip(directions).for_each(|(m, d)| *m |= d);
+    };
+    let mut rim = Vec::new();
+    if at_centre.rim && settings.grow_margin {
+        // The ball reaches past the disk at the centre already (large radii): every texel of the
+        // group samples the grown domain, without a pass over the disk first.
+        mark(&centre_texel);
+        rim = texels;
+    } else {
+        for (k, texel) in texels {
+            let hood = sums(&lattice, &texel, shift);
+            if hood.rim && settings.grow_margin {
+                mark(&texel);
+                rim.push((k, texel));
+            } else {
+                group.results.push((k, PixelResult::estimated(&hood.stats, None, hood.counts, settings)));
+            }
+        }
+    }
+    if rim.is_empty() {
+        return group;
+    }
+    // Where the balls reached the rim, the domain grows as the coverage check grows a single
+    // texel's, from the group's centre, and the rim texels sum a lattice over that domain.
+    let reach = grown_reach(atlas, &centre, &sampler, &marked);
+    let Some(lattice) = build(&rim, LatticeDomain::Grown(reach)) else {
+        group.alone.extend(rim.into_iter().map(|(k, _)| k));
+        return group;
+    };
+    for (k, texel) in rim {
+        let hood = sums(&lattice, &texel, shift);
+        group.results.push((k, PixelResult::estimated(&hood.stats, None, hood.counts, settings)));
+    }
+    group
+}
+
+/// The member nearest the members' mean location: the centre of the group's sampling plane
+/// (`None` without members).
+fn group_centre(members: &[(usize, Centre)]) -> Option<Centre> {
+    let mean = members.iter().map(|(_, c)| c.uv).sum::<DVec2>() / members.len().max(1) as f64;
+    members.iter().map(|(_, c)| *c).min_by(|a, b| a.uv.distance_squared(mean).total_cmp(&b.uv.distance_squared(mean)))
 }

@@ -24,7 +24,7 @@ use super::sample::unit_ellipse;
 use super::reach::{Reach, DIRECTIONS};
 use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
-use crate::relocation::{walk, Home, Located};
+use crate::relocation::{interior_face, walk, Home, Located};
 use glam::{DMat2, DVec2, DVec3, IVec2, Vec2, Vec3};
 
 /// How a located lattice point was reached from the centre: the face it lies in and the seams'
@@ -116,6 +116,9 @@ fn lattice_offset(seed: u64) -> Vec2 {
     Vec2::new((h & 0xffff) as f32, (h >> 16) as f32) / 65_536.0
 }
 
+/// Texels' worth of cells a lattice may hold beyond one pattern per texel (see `build`).
+const SMALL_GROUP: usize = 8;
+
 /// The sampling domains a lattice covers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum LatticeDomain {
@@ -130,7 +133,7 @@ pub enum LatticeDomain {
 impl TileLattice {
     /// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
     /// centre, with `samples` points per domain; `None` where it would hold more cells than
-    /// `samples` per texel.
+    /// `samples` per texel and a few more.
     pub fn build(
         atlas: &Atlas,
         plane: &TilePlane,
@@ -157,8 +160,10 @@ impl TileLattice {
         let first = ((low - margin) / spacing).floor();
         let cells = ((high + margin) / spacing).ceil() - first;
         // Where the texels lie far apart against their balls (a radius below the texel spacing),
-        // one lattice over them would locate more points than the texels' own patterns.
-        if !(f64::from(cells.x) * f64::from(cells.y) <= (samples * places.len()) as f64) {
+        // one lattice over them would locate far more points than the texels' own patterns. A
+        // few texels (a chart's corner in a tile) still share one: their patterns' domains are
+        // as large at large radii, and each texel alone gathers twice and probes.
+        if !(f64::from(cells.x) * f64::from(cells.y) <= (samples * (places.len() + SMALL_GROUP)) as f64) {
             return None;
         }
         let axis = usize::from(high.y - low.y > high.x - low.x);
@@ -260,7 +265,11 @@ impl TileLattice {
         let located = match from {
             Some((route, w_from)) => {
                 let target = route.home.point + route.m_path * (plane.ellipse * (w - w_from).as_dvec2());
-                match walk(atlas, &route.home, target, settings.max_jumps.saturating_sub(route.jumps)) {
+                let chart = atlas.topology.face_chart[route.home.face as usize];
+                // As after a seam in the walk: a target well inside the route's chart is there.
+                let arrived = interior_face(atlas, target, chart)
+                    .map(|face| Located::Inside { chart, uv: target, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) });
+                match arrived.unwrap_or_else(|| walk(atlas, &route.home, target, settings.max_jumps.saturating_sub(route.jumps))) {
                     Located::Inside { chart, uv, m_path, jumps, face } => {
                         Located::Inside { chart, uv, m_path: m_path * route.m_path, jumps: jumps + route.jumps, face }
                     }

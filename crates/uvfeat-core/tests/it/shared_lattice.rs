@@ -166,7 +166,7 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
         let places: Vec<Vec2> = [DVec2::ZERO, DVec2::new(0.03, 0.01)].map(|uv| plane.place(centre.uv + uv)).to_vec();
         (TileLattice::build(&atlas, &plane, &places, LatticeDomain::Disks(1.25), 256, 0, &sampler), places)
     };
-    // Texels 20 balls apart: one lattice over both would hold more points than their patterns.
+    // Texels 30 balls apart: one lattice over both would hold far more points than their patterns.
     assert!(build(0.001).0.is_none());
     let (lattice, places) = build(0.05);
     let lattice = lattice.expect("a lattice");
