@@ -1,21 +1,22 @@
-//! One sample set shared by a tile of texels (issue 12, `sampling = "shared"`).
+//! One sample set shared by a tile of texels (issue 12, `sampling = "shared"`, DESIGN.md §1.4.7).
 //!
 //! The per-texel samplers draw `N` points for every texel, although the neighbourhoods of nearby
 //! texels cover nearly the same surface: at r = 4 % of a 100K-face torus a texel's ellipse holds
 //! about 800 computation texels, so every surface point was located and evaluated for hundreds of
-//! texels. Here the points are drawn once per tile, on a jittered lattice in the sampling plane of
-//! the tile's centre `c` (its metric ellipse `E`, so that a lattice cell stands for the same
-//! surface area in every direction), located once (the same interior shortcut and exact walk as
-//! the other paths, from `c`), and every texel `t` of the tile keeps the points of its own
-//! sampling domain, the disk of radius `m` (the margin) around its place `w_t = E^-1 (s_t - c)`.
-//! The lattice's spacing gives that disk `N` points on average, as the per-texel pattern has.
+//! texels. Here the points are placed once per group of texels, on a regular lattice in the
+//! sampling plane of the group's centre `c` (its metric ellipse `E`, so that a lattice cell stands
+//! for the same surface area in every direction), and located once: the same interior shortcut as
+//! the fast path, and for the others a short walk continuing the route of the neighbour one cell
+//! nearer `c`. Every texel `t` then keeps the points of its own sampling domain, the disk of
+//! radius `m` (the margin) around its place `w_t = E^-1 (s_t - c)`, which the lattice's spacing
+//! fills with `N` points on average, as the per-texel pattern has; or, where the coverage check
+//! grew the domain, the grown domain around `c` that the whole group shares.
 //!
-//! So each texel still sums the same integrand over its own domain with `N` stratified points of
-//! the same weights `dA = J |det M_path| a`; only the strata are shared with the neighbours (the
-//! estimate is a smooth function of the texel, its noise correlated over a tile) instead of turned
-//! per texel. The texels then differ only in the ball test and the sums, which run over
-//! structure-of-arrays f32 columns sorted along the lattice's longer side, so that a texel reads a
-//! contiguous run of them (see `features/lattice_statistics.rs`).
+//! Each texel still sums the same integrand with the same weights `dA = J |det M_path| a`; only the
+//! points are shared with the neighbours instead of turned per texel. The texels differ only in
+//! the ball test and the sums, which run over structure-of-arrays f32 columns sorted along the
+//! lattice's longer side, so that a texel reads one contiguous run of them
+//! (`features/lattice_statistics.rs`).
 
 use super::centre::Centre;
 use super::located::locate_target;
