@@ -169,11 +169,14 @@ impl TileLattice {
         }
         let axis = usize::from(high.y - low.y > high.x - low.x);
         let cell_uv_area = f64::from(spacing * spacing) * plane.ellipse.determinant().abs();
+        // About the disk's share of the box of cells is kept (the points' columns are pushed to).
+        let expected = (f64::from(cells.x) * f64::from(cells.y) * 0.8) as usize + Self::PADDING;
+        let column = || Vec::with_capacity(expected);
         let mut lattice = Self {
-            w: Default::default(),
-            q: Default::default(),
-            normal: Default::default(),
-            area: Vec::new(),
+            w: [column(), column()],
+            q: [column(), column(), column()],
+            normal: if settings.with_normals { [column(), column(), column()] } else { Default::default() },
+            area: column(),
             axis,
             lost: Vec::new(),
             domain,
@@ -186,9 +189,13 @@ impl TileLattice {
         let place = |cell: IVec2| (first + cell.as_vec2() + offset) * spacing;
         // Only points some texel's domain holds: within the margin of the places' box, or within
         // the grown domain of the centre.
+        let (narrowest, widest) = (0..DIRECTIONS).map(|k| reach.margin(k) as f32).fold((f32::MAX, 0.0f32), |(n, w), m| (n.min(m), w.max(m)));
         let held = |w: Vec2| {
             let out = w - w.clamp(low, high);
-            out == Vec2::ZERO || out.length() < reach.at(f64::from(out.y.atan2(out.x))) as f32 + widening
+            let distance = out.length();
+            distance < narrowest + widening
+                || (distance < widest + widening
+                    && distance < reach.at(f64::from(out.y.atan2(out.x))) as f32 + widening)
         };
         // First the points in the centre's chart, row by row (in cache order), then the others from
         // the centre outwards (L1 order), so that the neighbour one cell towards the centre has
