@@ -188,3 +188,34 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
     let cell = f64::from(lattice.spacing).powi(2) * (0.05f64).powi(2);
     assert!((area / (lattice.len() as f64 * cell) - 1.0).abs() < 1e-3, "{area} for {} cells", lattice.len());
 }
+
+#[test]
+fn neighbourhoods_cut_by_a_mesh_border_are_flagged_as_on_the_exact_path() {
+    // An open cylinder: rings of texels near its two border loops lose part of their balls.
+    let atlas = atlas(&uvfeat_core::shapes::cylinder(0.5, 2.0, 96, 48), 512);
+    let (shared, exact) = (maps(&atlas, 0.3, SamplingPath::Shared), maps(&atlas, 0.3, SamplingPath::Exact));
+    let truncated = |m: &FeatureMaps| -> Vec<bool> { m.n_border.iter().map(|&n| n > 0).collect() };
+    let (a, b) = (truncated(&shared), truncated(&exact));
+    let both = a.iter().zip(&b).filter(|(x, y)| **x && **y).count();
+    let either = a.iter().zip(&b).filter(|(x, y)| **x || **y).count();
+    assert!(either > 500 && both as f64 >= 0.9 * either as f64, "{both} of {either} truncated texels agree");
+    // Away from the borders H = 1 / (2 * 0.5) = 1 and K = 0: the shared lattice errs no more than
+    // the exact path (both carry the estimators' bias at r = 0.6 times the cylinder's radius).
+    let inner: Vec<usize> = (0..a.len()).filter(|&t| !a[t] && !b[t] && exact.n_valid[t] > 0).collect();
+    let error = |m: &FeatureMaps, k: usize, truth: f64| {
+        median(inner.iter().map(|&t| (f64::from(m.values[k][t]) - truth).abs()).collect())
+    };
+    for (k, truth) in [(0, 1.0), (1, 0.0)] {
+        let (e_shared, e_exact) = (error(&shared, k, truth), error(&exact, k, truth));
+        assert!(e_shared <= 1.1 * e_exact + 1e-3 && e_shared < 0.05, "{:?}: {e_shared} against {e_exact}", FEATURES[k]);
+    }
+}
+
+#[test]
+fn balls_smaller_than_the_texel_spacing_take_the_per_texel_path() {
+    // 128² texels over a torus 12.6 long: texels 0.1 apart, balls of radius 0.004.
+    let atlas = atlas(&torus(2.0, 0.5, 96, 48), 512);
+    let (shared, fast) = (maps(&atlas, 0.004, SamplingPath::Shared), maps(&atlas, 0.004, SamplingPath::Fast));
+    assert!(shared.summary.texels > 10_000);
+    assert!(shared.values[0].iter().zip(&fast.values[0]).all(|(a, b)| a.to_bits() == b.to_bits()));
+}
