@@ -71,12 +71,20 @@ class FeatureJob:
 
     @classmethod
     def from_args(cls, args, pictures: bool = True) -> FeatureJob:
-        """The job of a command's parsed arguments (``--feature``, ``--radius``, ``--samples`` ...)."""
+        """The job of a command's parsed arguments (``--feature``, ``--radius``, ``--samples`` ...);
+        the computation options a command does not offer (``--adaptive``, ``--paper-mode``,
+        ``--standard-error``, ``--directions``) keep their defaults."""
+        offered = {name: getattr(args, name) for name in ("adaptive", "paper_mode", "standard_error", "directions")
+                   if hasattr(args, name)}
         return cls(features=args.feature, radii=args.radius, samples=args.samples, resolution=args.resolution,
-                   compute_resolution=args.compute_resolution, adaptive=args.adaptive, paper_mode=args.paper_mode,
-                   seed=args.seed, query=args.query, method=args.method, sampling=args.sampling,
-                   standard_error=args.standard_error, directions=args.directions, uv=args.uv,
-                   strict_uv=args.strict_uv, pictures=pictures)
+                   compute_resolution=args.compute_resolution, seed=args.seed, query=args.query, method=args.method,
+                   sampling=args.sampling, uv=args.uv, strict_uv=args.strict_uv, pictures=pictures, **offered)
+
+    def compute_options(self) -> dict:
+        """The keyword options of :meth:`uvfeat.Atlas.compute` this job runs with."""
+        return {"samples": self.samples, "compute_resolution": self.compute_resolution, "adaptive": self.adaptive,
+                "seed": self.seed, "paper_mode": self.paper_mode, "query": self.query,
+                "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling}
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
@@ -95,6 +103,28 @@ def load_with_notes(path: str, uv: str, resolution: int, strict_uv: bool):
     return mesh, notes
 
 
+@dataclass
+class RadiusMaps:
+    """The maps of one radius of a job, their per-vertex values and the notes of computing them."""
+    radius: str
+    maps: dict
+    per_vertex: dict
+    notes: list[str]
+    per_vertex_s: float
+
+
+def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True: None):
+    """The job's features on ``atlas``, one radius after the other (``advance`` reports each)."""
+    for radius in job.radii:
+        advance(f"features at r = {radius}", done=False)
+        with recorded_notes() as notes:
+            maps = atlas.compute(list(job.features), radius, **job.compute_options())
+        advance(f"per-vertex values at r = {radius}")
+        started = time.perf_counter()
+        per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+        yield RadiusMaps(radius, maps, per_vertex, notes, time.perf_counter() - started)
+
+
 def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], started: float,
                         advance=lambda description, done=True: None, source: dict | None = None):
     """Computes the job's features on ``mesh`` and writes its files to ``out``; ``advance``
@@ -107,8 +137,6 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     from .surface_plot import save_plot
 
     os.makedirs(out, exist_ok=True)
-    options = {"query": job.query, "standard_error": job.standard_error, "method": job.method,
-               "sampling": job.sampling}
     summary = {"uvfeat": __version__, "mesh": mesh.name, "source": source or {}, "warnings": list(load_notes),
                "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
@@ -119,23 +147,17 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     timings = dict(atlas.timings)
     advance("buffers ready")
     on_mesh: dict[str, list] = {name: [] for name in job.features}
-    for radius in job.radii:
-        advance(f"features at r = {radius}", done=False)
-        with recorded_notes() as notes:
-            maps = atlas.compute(list(job.features), radius, samples=job.samples,
-                                 compute_resolution=job.compute_resolution, adaptive=job.adaptive, seed=job.seed,
-                                 paper_mode=job.paper_mode, **options)
-        summary["warnings"] += notes
+    for computed in computed_radii(atlas, job, advance):
+        radius, maps, per_vertex = computed.radius, computed.maps, computed.per_vertex
+        summary["warnings"] += computed.notes
         first = next(iter(maps.values()))
-        advance(f"per-vertex values at r = {radius}")
         started_pv = time.perf_counter()
-        per_vertex = {name: m.per_vertex() for name, m in maps.items()}
         for name, values in per_vertex.items():
             on_mesh[name].append(values)
         tag = radius_tag(radius)
         directions = first.per_vertex_directions() if job.method == "fit" else None
         write_per_vertex(out, tag, mesh, first.radius, per_vertex, directions)
-        time_pv = time.perf_counter() - started_pv
+        time_pv = computed.per_vertex_s + time.perf_counter() - started_pv
         advance(f"maps at r = {radius}")
         line_field = first.uv_principal_directions()[:, :, ["d1", "d2"].index(job.directions)] \
             if job.directions and job.pictures else None

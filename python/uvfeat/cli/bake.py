@@ -7,8 +7,7 @@ import os
 
 from .._core import __version__
 from ..extras import require
-from ..feature_files import radius_list, radius_tag
-from ..notes import recorded_notes
+from ..feature_files import FeatureJob, computed_radii, radius_tag
 from ..writers import write_json, write_per_vertex
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
@@ -28,36 +27,32 @@ def add_command(commands) -> None:
 def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> dict:
     from ..atlas import Atlas
     from ..bake import bake_feature
-    from ..options import feature_names
 
     require("scipy.ndimage", "dilating texture gutters")  # before minutes of computing, not after
     require("tifffile", "writing float TIFF")
-    names = feature_names(args.feature)
-    radii = radius_list(args.radius)
+    job = FeatureJob.from_args(args, pictures=False)
     os.makedirs(args.out, exist_ok=True)
     summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
-               "settings": {"features": names, "radii": radii, "samples": args.samples, "resolution": args.resolution,
-                            "compute_resolution": args.compute_resolution, "method": args.method, "seed": args.seed}}
-    with steps(console, 1 + 2 * len(radii)) as advance:
+               "settings": {"features": list(job.features), "radii": list(job.radii), "samples": job.samples,
+                            "resolution": job.resolution, "compute_resolution": job.compute_resolution,
+                            "method": job.method, "seed": job.seed}}
+    with steps(console, 1 + 2 * len(job.radii)) as advance:
         advance("pre-processing + rasterising", done=False)
-        atlas = Atlas(mesh, resolution=args.resolution)
+        atlas = Atlas(mesh, resolution=job.resolution)
         summary["warnings"] += atlas.warnings()
-        for radius in radii:
-            advance(f"features at r = {radius}")
-            with recorded_notes() as notes:
-                maps = atlas.compute(names, radius, samples=args.samples, compute_resolution=args.compute_resolution,
-                                     seed=args.seed, method=args.method, sampling=args.sampling, query=args.query)
-            summary["warnings"] += notes
-            advance(f"bakes at r = {radius}")
-            tag = radius_tag(radius)
-            per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+        advance("buffers ready")
+        for computed in computed_radii(atlas, job, advance):
+            summary["warnings"] += computed.notes
+            advance(f"bakes at r = {computed.radius}", done=False)
+            tag = radius_tag(computed.radius)
             files = {name: {kind: os.path.basename(path) for kind, path in
-                            bake_feature(args.out, f"{name}_r{tag}", atlas.mesh, name, m.texture, per_vertex[name],
-                                         m.radius).items()}
-                     for name, m in maps.items()}
-            first = next(iter(maps.values()))
-            write_per_vertex(args.out, tag, atlas.mesh, first.radius, per_vertex)
-            summary["radii"][radius] = {"radius": first.radius, "files": files, "ply": f"per_vertex_r{tag}.ply"}
+                            bake_feature(args.out, f"{name}_r{tag}", atlas.mesh, name, m.texture,
+                                         computed.per_vertex[name], m.radius).items()}
+                     for name, m in computed.maps.items()}
+            first = next(iter(computed.maps.values()))
+            write_per_vertex(args.out, tag, atlas.mesh, first.radius, computed.per_vertex)
+            summary["radii"][computed.radius] = {"radius": first.radius, "files": files, "ply": f"per_vertex_r{tag}.ply"}
+            advance(f"bakes at r = {computed.radius} written")
         write_json(os.path.join(args.out, "bake.json"), summary)
     print_notes_and_outputs(console, summary["warnings"], "textures (.png 16-bit, .tif float, curvature and colour "
                             ".png), .glb, .ply and bake.json", args.out)

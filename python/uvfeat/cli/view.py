@@ -23,19 +23,17 @@ def open_viewer(mesh, args, console, load_notes: list[str], started: float) -> N
 
     from ..atlas import Atlas
     from ..extras import require
-    from ..feature_files import radius_list
-    from ..options import feature_names
+    from ..feature_files import FeatureJob
     from ..viewer import HEADLESS, view
 
     require("polyscope", "the viewer")  # before minutes of computing, not after
-    radii = radius_list(args.radius)
-    options = {"samples": args.samples, "compute_resolution": args.compute_resolution, "seed": args.seed,
-               "method": args.method, "sampling": args.sampling, "query": args.query}
+    job = FeatureJob.from_args(args, pictures=False)
+    radii, options = list(job.radii), job.compute_options()
     with steps(console, 2) as advance:
         advance("pre-processing + rasterising", done=False)
-        atlas = Atlas(mesh, resolution=args.resolution)
+        atlas = Atlas(mesh, resolution=job.resolution)
         advance(f"features at r = {', '.join(radii)}")
-        maps = atlas.compute(feature_names(args.feature), radii, **options)
+        maps = atlas.compute(list(job.features), radii, **options)
     for note in load_notes + atlas.warnings():
         console.print(f"[yellow]note:[/yellow] {note}")
     viewer = view(mesh, maps, radius=radii, atlas=atlas, compute_options=options,
