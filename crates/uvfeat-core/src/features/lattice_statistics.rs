@@ -76,7 +76,7 @@ struct Thresholds {
 /// f64: the principal curvatures read `sqrt(Var(k))`, which near an umbilic is the small
 /// difference `<k^2> - <k>^2` of two numbers near `H^2`, and f32 sums of `k^2` lose it (k1 of a
 /// sphere moved by 4e-4 when the mesh's normals did by 1e-16). A shift near the neighbourhood's
-/// `<k>` (the tile centre's own) keeps the f32 terms small.
+/// `<k>` (the group centre's own) keeps the f32 terms small.
 pub fn lattice_statistics(
     lattice: &TileLattice,
     texel: &LatticeTexel,
@@ -115,12 +115,15 @@ pub fn lattice_statistics(
         wg: total(wg),
         wg2: wg2.map_or(0.0, total),
     };
-    let elevation = sums(&lanes.elevation_w, &lanes.elevation_wg, None);
     let stats = NeighbourhoodStats {
-        elevation,
+        elevation: sums(&lanes.elevation_w, &lanes.elevation_wg, None),
         radial: sums(&lanes.elevation_w, &lanes.radial_wg, None),
         bending: sums(&lanes.bending_w, &lanes.bending_wg, None),
-        normal_curvature: unshifted(sums(&lanes.curvature_w, &lanes.curvature_wg, Some(&lanes.curvature_wg2)), curvature_shift),
+        // Shifted back by the value the lanes subtracted (the f32 one).
+        normal_curvature: unshifted(
+            sums(&lanes.curvature_w, &lanes.curvature_wg, Some(&lanes.curvature_wg2)),
+            f64::from(thresholds.shift),
+        ),
         geodesic_disk: WeightedSums { w: total(&lanes.area), w2: total(&lanes.area2), wg: 0.0, wg2: 0.0 },
     };
     let mut counts = SampleCounts { valid: total(&lanes.valid) as u32, ..SampleCounts::default() };
