@@ -10,9 +10,9 @@ use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
 use uvfeat_core::features::Feature;
+use uvfeat_core::lookup::Lookup;
 use uvfeat_core::mesh::{Topology, TriangleMesh};
 use uvfeat_core::output::FeatureMaps;
-use uvfeat_core::lookup::Lookup;
 use uvfeat_core::sampling::{centre_at, disk_pattern, pixel_angle, SamplingPath};
 use uvfeat_core::settings::{Choice, ComputeSettings};
 use uvfeat_core::{Atlas, AtlasOptions};
@@ -230,7 +230,8 @@ fn main() {
     let planes = Planes::new(&atlas);
     for (bilinear, name) in [(true, "bilinear SoA, 12 loads"), (false, "nearest texel AoS, 1 load")] {
         let (floor_cpu, floor_inside) = gather_floor(&atlas, &planes, bilinear, radius, samples, 512);
-        let ratios: Vec<String> = results.iter().map(|(path, _, cpu)| format!("{path:?} / floor {:.2}x", cpu / floor_cpu)).collect();
+        let ratios: Vec<String> =
+            results.iter().map(|(path, _, cpu)| format!("{path:?} / floor {:.2}x", cpu / floor_cpu)).collect();
         println!(
             "gather floor ({name}): cpu {:.0} ms, {:.1} ns cpu per sample, {floor_inside:.1} inside/texel; {}",
             1e3 * floor_cpu,

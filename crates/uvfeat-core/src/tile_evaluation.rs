@@ -13,7 +13,7 @@ use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{lattice_statistics, CurvatureMethod, VolumeWeighting};
 use crate::relocation::{walk, Located};
 use crate::sampling::{
-    centre_at, fast_path_applies, grown_reach, Centre, LatticeTexel, LatticeDomain, Overlaps, Placement, Sample,
+    centre_at, fast_path_applies, grown_reach, Centre, LatticeDomain, LatticeTexel, Overlaps, Placement, Sample,
     SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;

@@ -194,7 +194,8 @@ fn sums<const NORMALS: bool>(
         let area = chunk(&lattice.area, k);
         let mut bend = [0.0f32; LANES];
         if NORMALS {
-            let (nx, ny, nz) = (chunk(&lattice.normal[0], k), chunk(&lattice.normal[1], k), chunk(&lattice.normal[2], k));
+            let (nx, ny, nz) =
+                (chunk(&lattice.normal[0], k), chunk(&lattice.normal[1], k), chunk(&lattice.normal[2], k));
             for l in 0..LANES {
                 let (ex, ey, ez) = (n.x - nx[l], n.y - ny[l], n.z - nz[l]);
                 bend[l] = ex * ex + ey * ey + ez * ez;

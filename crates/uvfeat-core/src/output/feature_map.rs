@@ -4,11 +4,11 @@
 use crate::atlas::Atlas;
 use crate::error::Result;
 use crate::evaluation::{evaluate_point, Patterns, PixelResult};
-use crate::tile_evaluation::{evaluate_tile, shared_lattice_applies, texel_uv};
 use crate::features::{CurvatureMethod, Feature};
 use crate::lookup::Lookup;
 use crate::sampling::Placement;
 use crate::settings::ComputeSettings;
+use crate::tile_evaluation::{evaluate_tile, shared_lattice_applies, texel_uv};
 use rayon::prelude::*;
 
 /// Side of the square tiles of texels evaluated together, so that their neighbourhoods' reads of
@@ -133,9 +133,7 @@ impl FeatureMaps {
         for (&t, result) in order.iter().zip(results) {
             pixels[t] = result;
         }
-        let chart = (0..w * w)
-            .map(|t| atlas.chart_at(texel_uv(t, w)))
-            .collect();
+        let chart = (0..w * w).map(|t| atlas.chart_at(texel_uv(t, w))).collect();
         Ok(Self::assemble(pixels, chart, settings))
     }
 

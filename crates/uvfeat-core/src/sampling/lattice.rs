@@ -21,8 +21,8 @@
 use super::centre::Centre;
 use super::located::locate_target;
 use super::pattern::pcg_hash;
-use super::sample::unit_ellipse;
 use super::reach::{Reach, DIRECTIONS};
+use super::sample::unit_ellipse;
 use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
 use crate::relocation::{interior_face, walk, Home, Located};
@@ -146,17 +146,19 @@ impl TileLattice {
     ) -> Option<Self> {
         let (mut low, mut high) =
             places.iter().fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &w| (l.min(w), h.max(w)));
-        let (margin, reach, widening) = match domain {
-            LatticeDomain::Disks(margin) => (margin as f32, Reach::uniform(margin), 0.0),
+        let (reach, widening) = match domain {
+            LatticeDomain::Disks(margin) => (Reach::uniform(margin), 0.0),
             LatticeDomain::Grown(reach) => {
-                let widest = (0..DIRECTIONS).map(|k| reach.margin(k)).fold(0.0, f64::max) as f32;
-                let farthest = places.iter().map(|w| w.length()).fold(0.0, f32::max);
                 (low, high) = (Vec2::ZERO, Vec2::ZERO);
-                (widest + farthest, reach, farthest)
+                (reach, places.iter().map(|w| w.length()).fold(0.0, f32::max))
             }
         };
+        let margins = (0..DIRECTIONS).map(|k| reach.margin(k) as f32);
+        let (narrowest, widest) = (margins.clone().fold(f32::MAX, f32::min), margins.fold(0.0, f32::max));
+        let margin = widest + widening;
         // `samples` points per domain, as the per-texel pattern spreads its points over a grown one.
-        let domain_area = std::f64::consts::PI * (0..DIRECTIONS).map(|k| reach.margin(k).powi(2)).sum::<f64>() / DIRECTIONS as f64;
+        let domain_area =
+            std::f64::consts::PI * (0..DIRECTIONS).map(|k| reach.margin(k).powi(2)).sum::<f64>() / DIRECTIONS as f64;
         let spacing = (domain_area / samples as f64).sqrt() as f32;
         let first = ((low - margin) / spacing).floor();
         let cells = ((high + margin) / spacing).ceil() - first;
@@ -189,7 +191,6 @@ impl TileLattice {
         let place = |cell: IVec2| (first + cell.as_vec2() + offset) * spacing;
         // Only points some texel's domain holds: within the margin of the places' box, or within
         // the grown domain of the centre.
-        let (narrowest, widest) = (0..DIRECTIONS).map(|k| reach.margin(k) as f32).fold((f32::MAX, 0.0f32), |(n, w), m| (n.min(m), w.max(m)));
         let held = |w: Vec2| {
             let out = w - w.clamp(low, high);
             let distance = out.length();
@@ -275,9 +276,16 @@ impl TileLattice {
                 let target = route.home.point + route.m_path * (plane.ellipse * (w - w_from).as_dvec2());
                 let chart = atlas.topology.face_chart[route.home.face as usize];
                 // As after a seam in the walk: a target well inside the route's chart is there.
-                let arrived = interior_face(atlas, target, chart)
-                    .map(|face| Located::Inside { chart, uv: target, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) });
-                match arrived.unwrap_or_else(|| walk(atlas, &route.home, target, settings.max_jumps.saturating_sub(route.jumps))) {
+                let arrived = interior_face(atlas, target, chart).map(|face| Located::Inside {
+                    chart,
+                    uv: target,
+                    m_path: DMat2::IDENTITY,
+                    jumps: 0,
+                    face: Some(face),
+                });
+                match arrived
+                    .unwrap_or_else(|| walk(atlas, &route.home, target, settings.max_jumps.saturating_sub(route.jumps)))
+                {
                     Located::Inside { chart, uv, m_path, jumps, face } => {
                         Located::Inside { chart, uv, m_path: m_path * route.m_path, jumps: jumps + route.jumps, face }
                     }
@@ -291,7 +299,14 @@ impl TileLattice {
 
     /// Keeps the surface point of the lattice point `w` located at `located` (or counts it lost)
     /// and returns its route.
-    fn keep(&mut self, atlas: &Atlas, w: Vec2, located: Located, uv_area: f64, settings: &SamplerSettings) -> Option<Route> {
+    fn keep(
+        &mut self,
+        atlas: &Atlas,
+        w: Vec2,
+        located: Located,
+        uv_area: f64,
+        settings: &SamplerSettings,
+    ) -> Option<Route> {
         let patches = &atlas.patches.faces;
         match located {
             Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches[face as usize].chart >= 0 => {

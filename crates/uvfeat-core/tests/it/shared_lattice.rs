@@ -94,7 +94,8 @@ fn assert_as_accurate(name: &str, atlas: &Atlas, radius: f64, truth: Truth) -> [
     }
     // Bending energy has no closed form here: the two estimates agree within the exact one's noise.
     let scale = median(texels.iter().map(|&t| f64::from(exact.values[2][t]).abs()).collect());
-    let difference = median(texels.iter().map(|&t| f64::from((shared.values[2][t] - exact.values[2][t]).abs())).collect());
+    let difference =
+        median(texels.iter().map(|&t| f64::from((shared.values[2][t] - exact.values[2][t]).abs())).collect());
     assert!(difference < 0.03 * scale, "{name} bending energy: median difference {difference} of {scale}");
     e_shared
 }
