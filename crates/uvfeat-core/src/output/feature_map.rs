@@ -1,5 +1,5 @@
 //! Feature maps over the computation texture (DESIGN.md §1.9): every texel centre of a `W_c x W_c`
-//! grid is a point `s` where all requested features are evaluated, in parallel over rows.
+//! grid is a point `s` where all requested features are evaluated, in parallel over tiles.
 
 use crate::atlas::Atlas;
 use crate::error::Result;
@@ -15,31 +15,16 @@ use rayon::prelude::*;
 /// the buffers stay in cache (16 measured faster than 8 and as fast as 32).
 const TILE: usize = 16;
 
-/// Indices `j * w + i` of a `w`² texture, tile after tile of [`TILE`]² texels; the parallel
-/// evaluation splits this order into contiguous runs, so each thread works tile by tile.
-fn tiled_order(w: usize) -> Vec<usize> {
+/// The texels `j * w + i` of each [`TILE`]² tile of a `w`² texture, tile after tile: the parallel
+/// evaluation works tile by tile.
+fn tiles(w: usize) -> Vec<Vec<usize>> {
     let tiles = w.div_ceil(TILE);
     (0..tiles * tiles)
-        .flat_map(|tile| {
+        .map(|tile| {
             let (ti, tj) = (tile % tiles * TILE, tile / tiles * TILE);
-            (tj..(tj + TILE).min(w)).flat_map(move |j| (ti..(ti + TILE).min(w)).map(move |i| j * w + i))
+            (tj..(tj + TILE).min(w)).flat_map(|j| (ti..(ti + TILE).min(w)).map(move |i| j * w + i)).collect()
         })
         .collect()
-}
-
-/// The runs of `order` (see [`tiled_order`]) that make up each tile of a `w`² texture.
-fn tile_runs(order: &[usize], w: usize) -> Vec<&[usize]> {
-    let tiles = w.div_ceil(TILE);
-    let mut runs = Vec::with_capacity(tiles * tiles);
-    let mut rest = order;
-    for tile in 0..tiles * tiles {
-        let (ti, tj) = (tile % tiles * TILE, tile / tiles * TILE);
-        let len = ((ti + TILE).min(w) - ti) * ((tj + TILE).min(w) - tj);
-        let (run, tail) = rest.split_at(len);
-        runs.push(run);
-        rest = tail;
-    }
-    runs
 }
 
 /// Neighbourhood area ratio above which a neighbourhood holds more than one sheet: one smooth sheet
@@ -112,25 +97,24 @@ impl FeatureMaps {
             // Evaluated once here rather than by the first worker that looks a sample up.
             atlas.buffers();
         }
-        let order = tiled_order(w);
-        let results: Vec<PixelResult> = if shared_lattice_applies(atlas, settings) {
-            // Tile after tile, in the order of `order`.
-            tile_runs(&order, w)
-                .par_iter()
-                .map_init(Vec::new, |scratch, texels| evaluate_tile(atlas, settings, &patterns, texels, scratch))
-                .flatten_iter()
-                .collect()
-        } else {
-            order
-                .par_iter()
-                .map_init(Vec::new, |scratch, &t| {
-                    let placement = Placement::of_pixel((t % w) as u32, (t / w) as u32, settings.seed);
-                    evaluate_point(atlas, texel_uv(t, w), placement, settings, &patterns, scratch)
-                })
-                .collect()
-        };
+        let tiles = tiles(w);
+        let shared = shared_lattice_applies(atlas, settings);
+        let results: Vec<PixelResult> = tiles
+            .par_iter()
+            .map_init(Vec::new, |scratch, texels| {
+                if shared {
+                    return evaluate_tile(atlas, settings, &patterns, texels, scratch);
+                }
+                let placement = |t: usize| Placement::of_pixel((t % w) as u32, (t / w) as u32, settings.seed);
+                texels
+                    .iter()
+                    .map(|&t| evaluate_point(atlas, texel_uv(t, w), placement(t), settings, &patterns, scratch))
+                    .collect()
+            })
+            .flatten_iter()
+            .collect();
         let mut pixels = vec![PixelResult::EMPTY; w * w];
-        for (&t, result) in order.iter().zip(results) {
+        for (&t, result) in tiles.iter().flatten().zip(results) {
             pixels[t] = result;
         }
         let chart = (0..w * w).map(|t| atlas.chart_at(texel_uv(t, w))).collect();

@@ -25,8 +25,8 @@ use super::reach::{Reach, DIRECTIONS};
 use super::sample::unit_ellipse;
 use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
-use crate::relocation::{interior_face, walk, Home, Located};
-use glam::{DMat2, DVec2, DVec3, IVec2, Vec2, Vec3};
+use crate::relocation::{interior_face, locate_with, Home, Located, Relocation};
+use glam::{DMat2, DVec2, IVec2, Vec2, Vec3};
 
 /// How a located lattice point was reached from the centre: the face it lies in and the seams'
 /// linear maps on the way, which its neighbours farther out continue.
@@ -249,12 +249,9 @@ impl TileLattice {
         uv_area: f64,
         settings: &SamplerSettings,
     ) -> Option<Route> {
-        let (uv, centre) = (plane.uv(w), &plane.centre);
-        let patches = &atlas.patches.faces;
-        let (i, j) = atlas.texel_coordinates(uv)?;
-        let face = atlas.coverage.interior_face.at(i, j);
-        patches.get(face as usize).filter(|patch| patch.chart == centre.chart)?;
-        let inside = Located::Inside { chart: centre.chart, uv, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) };
+        let (uv, chart) = (plane.uv(w), plane.centre.chart);
+        let face = interior_face(atlas, uv, chart)?;
+        let inside = Located::Inside { chart, uv, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) };
         self.keep(atlas, w, inside, uv_area, settings)
     }
 
@@ -273,19 +270,12 @@ impl TileLattice {
     ) -> Option<Route> {
         let located = match from {
             Some((route, w_from)) => {
+                // The relocation of a target from the neighbour's point, in the chart its route
+                // reached: the interior shortcut, else the walk.
                 let target = route.home.point + route.m_path * (plane.ellipse * (w - w_from).as_dvec2());
                 let chart = atlas.topology.face_chart[route.home.face as usize];
-                // As after a seam in the walk: a target well inside the route's chart is there.
-                let arrived = interior_face(atlas, target, chart).map(|face| Located::Inside {
-                    chart,
-                    uv: target,
-                    m_path: DMat2::IDENTITY,
-                    jumps: 0,
-                    face: Some(face),
-                });
-                match arrived
-                    .unwrap_or_else(|| walk(atlas, &route.home, target, settings.max_jumps.saturating_sub(route.jumps)))
-                {
+                let left = settings.max_jumps.saturating_sub(route.jumps);
+                match locate_with(atlas, Relocation::Walk, route.home.point, Some(&route.home), chart, target, left) {
                     Located::Inside { chart, uv, m_path, jumps, face } => {
                         Located::Inside { chart, uv, m_path: m_path * route.m_path, jumps: jumps + route.jumps, face }
                     }
@@ -321,7 +311,8 @@ impl TileLattice {
                 match settings.lookup.evaluate(atlas, face, uv, chart) {
                     Some(point) => {
                         let area = point.area_element * uv_area * m_path.determinant().abs();
-                        self.push(w, point.position - atlas.patches.origin, point.normal, area, settings);
+                        let relative = (point.position - atlas.patches.origin).as_vec3();
+                        self.push_f32(w, relative, point.normal.as_vec3(), area as f32, settings);
                     }
                     None => self.lost.push(LostPoint { w, border: false }),
                 }
@@ -336,10 +327,6 @@ impl TileLattice {
                 None
             }
         }
-    }
-
-    fn push(&mut self, w: Vec2, relative: DVec3, normal: DVec3, area: f64, settings: &SamplerSettings) {
-        self.push_f32(w, relative.as_vec3(), normal.as_vec3(), area as f32, settings);
     }
 
     fn push_f32(&mut self, w: Vec2, relative: Vec3, normal: Vec3, area: f32, settings: &SamplerSettings) {
