@@ -18,7 +18,14 @@ def lat_long_sphere() -> uvfeat.Mesh:
 def xatlas_icosphere() -> uvfeat.Mesh:
     """Unit icosphere (20,480 triangles) with an xatlas multi-chart atlas."""
     ico = trimesh.creation.icosphere(subdivisions=5)
-    return uvfeat.Mesh(ico.vertices, ico.faces, name="icosphere").with_atlas(resolution=1024)
+    return uvfeat.Mesh(ico.vertices, ico.faces, name="icosphere").with_atlas(resolution=1024, method="xatlas")
+
+
+@functools.lru_cache(maxsize=None)
+def charts_icosphere() -> uvfeat.Mesh:
+    """The same icosphere with uvfeat's own normal-cone atlas (the default for meshes without UVs)."""
+    ico = trimesh.creation.icosphere(subdivisions=5)
+    return uvfeat.Mesh(ico.vertices, ico.faces, name="icosphere (charts)").with_atlas(resolution=1024)
 
 
 @functools.lru_cache(maxsize=None)
@@ -29,7 +36,13 @@ def torus_single() -> uvfeat.Mesh:
 @functools.lru_cache(maxsize=None)
 def torus_xatlas() -> uvfeat.Mesh:
     t = torus_single()
-    return uvfeat.Mesh(t.positions, t.faces, name="torus (xatlas)").with_atlas(resolution=1024)
+    return uvfeat.Mesh(t.positions, t.faces, name="torus (xatlas)").with_atlas(resolution=1024, method="xatlas")
+
+
+@functools.lru_cache(maxsize=None)
+def torus_charts() -> uvfeat.Mesh:
+    t = torus_single()
+    return uvfeat.Mesh(t.positions, t.faces, name="torus (charts)").with_atlas(resolution=1024)
 
 
 def torus_truth(mesh: uvfeat.Mesh, major: float = 2.0, minor: float = 0.5):

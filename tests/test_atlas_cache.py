@@ -29,28 +29,28 @@ def _forbid_unwrapping(monkeypatch):
 
 
 def test_a_second_unwrap_of_the_same_mesh_reads_the_cache(cache, sphere, monkeypatch):
-    first = sphere.with_atlas(resolution=256)
+    first = sphere.with_atlas(resolution=256, method="xatlas")
     assert len(list(cache.glob("*.npz"))) == 1
     _forbid_unwrapping(monkeypatch)
-    second = sphere.with_atlas(resolution=256)
+    second = sphere.with_atlas(resolution=256, method="xatlas")
     assert np.array_equal(first.uvs, second.uvs) and np.array_equal(first.uv_faces, second.uv_faces)
     assert second.n_charts == first.n_charts > 1
 
 
 def test_other_positions_or_options_unwrap_again(cache, sphere):
-    sphere.with_atlas(resolution=256)
-    sphere.with_atlas(resolution=512)
+    sphere.with_atlas(resolution=256, method="xatlas")
+    sphere.with_atlas(resolution=512, method="xatlas")
     moved = sphere.positions.copy()
     moved[0, 0] += 1e-9
-    uvfeat.Mesh(moved, sphere.faces).with_atlas(resolution=256)
+    uvfeat.Mesh(moved, sphere.faces).with_atlas(resolution=256, method="xatlas")
     assert len(list(cache.glob("*.npz"))) == 3
 
 
 def test_a_corrupt_cache_file_is_ignored_and_rewritten(cache, sphere):
-    first = sphere.with_atlas(resolution=256)
+    first = sphere.with_atlas(resolution=256, method="xatlas")
     (path,) = cache.glob("*.npz")
     path.write_bytes(b"not an npz file")
-    again = sphere.with_atlas(resolution=256)
+    again = sphere.with_atlas(resolution=256, method="xatlas")
     assert np.array_equal(first.uvs, again.uvs)
     with np.load(path) as data:
         assert np.array_equal(data["uvs"], first.uvs)
@@ -59,9 +59,9 @@ def test_a_corrupt_cache_file_is_ignored_and_rewritten(cache, sphere):
 def test_the_cache_can_be_turned_off(tmp_path, sphere, monkeypatch):
     monkeypatch.setenv("UVFEAT_CACHE_DIR", "off")
     assert unwrap.cache_dir() is None
-    sphere.with_atlas(resolution=256)
+    sphere.with_atlas(resolution=256, method="xatlas")
     monkeypatch.setenv("UVFEAT_CACHE_DIR", str(tmp_path))
-    sphere.with_atlas(resolution=256, cache=False)
+    sphere.with_atlas(resolution=256, cache=False, method="xatlas")
     assert not (tmp_path / "atlases").exists()
 
 
@@ -70,7 +70,7 @@ def test_an_unwritable_cache_warns_and_still_returns_the_atlas(tmp_path, sphere,
     blocker.write_text("a file where the cache folder should be")
     monkeypatch.setenv("UVFEAT_CACHE_DIR", str(blocker))
     with pytest.warns(RuntimeWarning, match="atlas cache"):
-        mesh = sphere.with_atlas(resolution=256)
+        mesh = sphere.with_atlas(resolution=256, method="xatlas")
     assert mesh.n_charts > 1
 
 

@@ -9,13 +9,14 @@ import numpy as np
 import pytest
 
 import uvfeat
-from analytic import (lat_long_sphere, range_normalised_error, torus_single, torus_truth, torus_xatlas,
-                      xatlas_icosphere)
+from analytic import (charts_icosphere, lat_long_sphere, range_normalised_error, torus_charts, torus_single,
+                      torus_truth, torus_xatlas, xatlas_icosphere)
 
 ACCEPTANCE = ["mean_curvature", "gaussian_curvature", "bending_energy", "shape_index", "k1", "k2", "curvedness"]
 
 
-@pytest.mark.parametrize("mesh_factory", [lat_long_sphere, xatlas_icosphere], ids=["lat-long", "xatlas"])
+@pytest.mark.parametrize("mesh_factory", [lat_long_sphere, xatlas_icosphere, charts_icosphere],
+                         ids=["lat-long", "xatlas", "charts"])
 def test_unit_sphere_acceptance(mesh_factory):
     mesh = mesh_factory()
     values = uvfeat.compute(mesh, ACCEPTANCE, radius=0.2, compute_resolution=256)
@@ -45,7 +46,7 @@ def test_plane_has_no_curvature(mesh):
         assert np.max(np.abs(maps[name].texture[interior])) < 1e-3, name
 
 
-@pytest.mark.parametrize("mesh_factory", [torus_single, torus_xatlas], ids=["single chart", "xatlas"])
+@pytest.mark.parametrize("mesh_factory", [torus_single, torus_xatlas, torus_charts], ids=["single chart", "xatlas", "charts"])
 def test_torus_outer_and_inner_equator(mesh_factory):
     atlas = uvfeat.Atlas(mesh_factory(), 1024)
     maps = atlas.compute(["mean_curvature", "gaussian_curvature"], radius=0.15, compute_resolution=256)
@@ -63,12 +64,13 @@ def test_torus_outer_and_inner_equator(mesh_factory):
         assert abs(k / k_true - 1) < 0.05, (name, k)
 
 
-def test_single_and_multi_chart_atlases_agree():
+@pytest.mark.parametrize("mesh_factory", [torus_xatlas, torus_charts], ids=["xatlas", "charts"])
+def test_single_and_multi_chart_atlases_agree(mesh_factory):
     # Evaluated at the vertices with enough samples that Monte Carlo noise (about 3 % of the range
     # per vertex at N = 256 on this torus) does not hide what is compared: the atlases.
     options = dict(radius=0.15, samples=2048, compute_resolution=64, query="direct")
     single = uvfeat.compute(torus_single(), "mean_curvature", **options)["mean_curvature"]
-    multi = uvfeat.compute(torus_xatlas(), "mean_curvature", **options)["mean_curvature"]
+    multi = uvfeat.compute(mesh_factory(), "mean_curvature", **options)["mean_curvature"]
     assert range_normalised_error(multi, single) < 0.02
 
 

@@ -62,13 +62,17 @@ def test_round_trip_through_files_keeps_charts_and_welds_seams(tmp_path, extensi
     assert len(np.unique(loaded.vertex_ids)) == torus.n_vertices  # every split vertex welded back
 
 
-def test_file_without_uvs_gets_an_xatlas_atlas_or_a_clear_error(tmp_path):
+def test_file_without_uvs_gets_an_automatic_atlas_or_a_clear_error(tmp_path):
     path = tmp_path / "ico.obj"
     trimesh.creation.icosphere(3).export(path)
     with pytest.raises(UVError, match="no UV coordinates"):
         uvfeat.load(path, uv="require")
-    mesh = uvfeat.load(path)
-    assert mesh.has_uvs and mesh.n_charts > 1
+    automatic, charts, xatlas = (uvfeat.load(path, uv=uv) for uv in ("auto", "charts", "xatlas"))
+    np.testing.assert_array_equal(automatic.uvs, charts.uvs)
+    assert charts.n_charts > 1 and xatlas.n_charts > 1
+    assert not np.array_equal(charts.uvs.shape, xatlas.uvs.shape) or not np.allclose(charts.uvs, xatlas.uvs)
+    with pytest.raises(ValueError, match="uv must be one of"):
+        uvfeat.load(path, uv="lscm")
 
 
 def test_multi_mesh_scene_is_merged_with_non_overlapping_uvs(tmp_path):

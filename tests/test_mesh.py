@@ -72,9 +72,22 @@ def test_split_vertices_are_welded_but_kept_in_the_arrays():
     assert mesh.n_charts == 1  # same UVs on both sides of the diagonal: one chart
 
 
-def test_with_atlas_builds_a_multi_chart_xatlas_atlas():
+@pytest.mark.parametrize("method", ["charts", "xatlas"])
+def test_with_atlas_builds_a_multi_chart_atlas(method):
     sphere = uvfeat.shapes.uv_sphere(1.0, 48, 24)
-    fresh = uvfeat.Mesh(sphere.positions, sphere.faces).with_atlas(resolution=512)
+    fresh = uvfeat.Mesh(sphere.positions, sphere.faces).with_atlas(resolution=512, method=method)
     assert fresh.n_charts > 1
     assert fresh.uvs.min() >= 0 and fresh.uvs.max() <= 1
     np.testing.assert_array_equal(fresh.faces, sphere.faces)
+    assert uvfeat.Atlas(fresh, 512).diagnostics["overlapping_texels"] == 0
+
+
+def test_with_atlas_names_a_bad_method_or_option():
+    sphere = uvfeat.shapes.uv_sphere(1.0, 16, 8)
+    bare = uvfeat.Mesh(sphere.positions, sphere.faces)
+    with pytest.raises(ValueError, match="method must be one of"):
+        bare.with_atlas(method="lscm")
+    with pytest.raises(uvfeat.InvalidParameterError, match="max_angle"):
+        uvfeat.unwrap.chart_uvs(bare.positions, bare.faces, max_angle=95)
+    with pytest.raises(uvfeat.InvalidParameterError, match="do not fit"):
+        uvfeat.unwrap.chart_uvs(bare.positions, bare.faces, resolution=4, max_angle=1)

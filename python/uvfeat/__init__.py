@@ -20,7 +20,7 @@ Conventions: lengths in the mesh's units; UV in [0, 1]^2 with v up; outward norm
 right-hand rule on counter-clockwise faces; H = (k1 + k2)/2 > 0 on convex regions.
 """
 
-from . import compare, errors, examples, options, reference, shapes
+from . import compare, errors, examples, options, reference, shapes, unwrap
 from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
@@ -88,5 +88,6 @@ __all__ = [
     "plot",
     "reference",
     "shapes",
+    "unwrap",
     "view",
 ]

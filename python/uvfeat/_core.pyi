@@ -13,6 +13,7 @@ __all__ = [
     "Topology",
     "Atlas",
     "shape",
+    "unwrap",
     "atlas_bytes",
     "ComputeSettings",
     "FeatureMaps",
@@ -39,6 +40,15 @@ def shape(
     name: str, sizes: list[float], counts: list[int], mirrored: bool = False
 ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]]:
     """Analytic mesh by name: ``(positions, faces, uvs, uv_faces)``."""
+
+def unwrap(
+    positions: NDArray[np.float64],
+    faces: NDArray[np.int64],
+    resolution: int | None = None,
+    padding: float | None = None,
+    max_angle: float | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.int64], int]:
+    """Normal-cone charts packed into the unit square: ``(uvs, uv_faces, n_charts)``."""
 
 @final
 class Topology:

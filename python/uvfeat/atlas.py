@@ -310,7 +310,7 @@ class Atlas:
             notes.append(f"{d['non_manifold_edges']} non-manifold edges (more than two faces): treated as borders")
         if d["overlapping_texels"]:
             notes.append(f"{d['overlapping_texels']} texels are covered by several triangles (overlapping UVs): "
-                         "features there are wrong; re-atlas with uv='xatlas'")
+                         "features there are wrong; re-atlas with uv='charts'")
         if d["conflicts"]:
             notes.append(f"{d['conflicts']} texels are claimed by edges of several charts: more gutter or resolution helps")
         if d["charts_without_texels"]:

@@ -10,12 +10,11 @@ import numpy as np
 from .atlas import Atlas
 from .errors import InvalidMeshError, MeshFileError, UVError, UVWarning
 from .mesh import Mesh
+from .unwrap import UNWRAP_METHODS, UV_POLICIES
 
 #: File extensions uvfeat reads (through trimesh).
 SUPPORTED_FORMATS = ("obj", "ply", "glb", "gltf", "off", "stl")
 
-#: What ``load(..., uv=...)`` accepts.
-UV_POLICIES = ("auto", "require", "xatlas")
 
 #: Formats that are text only: a NUL byte in them means the file is not what its name says.
 TEXT_FORMATS = ("obj", "off")
@@ -118,13 +117,14 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
     ----------
     path : str or PathLike
         A file of one of :data:`SUPPORTED_FORMATS`.
-    uv : {"auto", "require", "xatlas"}
-        ``"auto"`` (default) keeps the file's UVs and builds an xatlas atlas when there are none
-        or when they overlap on more than :data:`MAX_OVERLAP_SHARE` of their texels (with a
-        :class:`~uvfeat.errors.UVWarning`; smaller overlaps are kept, and
-        :meth:`Atlas.warnings` counts them); ``"require"`` keeps the file's UVs as they are and
-        raises :class:`~uvfeat.errors.UVError` when there are none; ``"xatlas"`` always builds a
-        new atlas (tiled UVs, for instance). Per-vertex results follow the file's vertex order
+    uv : {"auto", "require", "charts", "xatlas"}
+        ``"auto"`` (default) keeps the file's UVs and builds an automatic atlas (uvfeat's
+        normal-cone charts, :mod:`uvfeat.unwrap`) when there are none or when they overlap on more
+        than :data:`MAX_OVERLAP_SHARE` of their texels (with a :class:`~uvfeat.errors.UVWarning`;
+        smaller overlaps are kept, and :meth:`Atlas.warnings` counts them); ``"require"`` keeps the
+        file's UVs as they are and raises :class:`~uvfeat.errors.UVError` when there are none;
+        ``"charts"`` and ``"xatlas"`` always build a new atlas with that unwrapper (tiled UVs, for
+        instance). Per-vertex results follow the file's vertex order
         whichever atlas is used.
     resolution : int
         Geometry-buffer resolution an automatic atlas is packed for (2+ texel gutters there).
@@ -146,12 +146,12 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
     part_uvs = [_uvs_of(g) for g in parts]
     name = os.path.basename(path)
     has_uvs = all(u is not None for u in part_uvs)
-    if uv == "xatlas" or not has_uvs:
+    if uv in UNWRAP_METHODS or not has_uvs:
         if uv == "require":
             missing = "some of its meshes have" if any(u is not None for u in part_uvs) else "it has"
             raise UVError(f"{name}: {missing} no UV coordinates; use uv='auto' for an automatic atlas")
         mesh = Mesh(positions, faces, name=name)
-        return mesh.with_atlas(resolution=resolution)
+        return mesh.with_atlas(resolution=resolution, method=uv if uv in UNWRAP_METHODS else UNWRAP_METHODS[0])
     if len(parts) > 1:
         part_uvs = _tile_part_uvs(part_uvs)
         warnings.warn(f"{name}: {len(parts)} meshes merged; their UV layouts were tiled side by side into one "
@@ -161,7 +161,7 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
         share = Atlas(mesh, OVERLAP_CHECK_RESOLUTION).overlap_share
         if share > MAX_OVERLAP_SHARE:
             warnings.warn(f"{name}: the file's UVs overlap on {share:.1%} of their texels, so the features there would "
-                          "mix surface points; re-atlased with xatlas (vertex order unchanged; uv='require' keeps "
+                          "mix surface points; re-atlased (vertex order unchanged; uv='require' keeps "
                           "the file's UVs)", UVWarning, stacklevel=2)
             return Mesh(positions, faces, name=name).with_atlas(resolution=resolution)
     return mesh

@@ -1,11 +1,18 @@
-"""Automatic multi-chart UV atlases with xatlas, for meshes that have none (DESIGN.md §1.1).
+"""Automatic multi-chart UV atlases for meshes that have none (DESIGN.md §1.1.1).
 
-The unwrap is the slowest step for a mesh without UVs (about 60 s for a 200K-face scan), and it
-depends only on the mesh and the options, so its result is cached on disk, keyed by a hash of the
-positions, the faces, the options and the xatlas version: a second run on the same mesh reads the
-atlas back in milliseconds. The cache lives in ``$UVFEAT_CACHE_DIR`` (default
-``$XDG_CACHE_HOME/uvfeat`` or ``~/.cache/uvfeat``); ``UVFEAT_CACHE_DIR=off`` or ``cache=False``
-turns it off. A cache file that cannot be read is ignored and written anew.
+Two unwrappers, chosen by ``method`` wherever an atlas is built (:meth:`uvfeat.Mesh.with_atlas`,
+``uvfeat.load(uv=...)``, the CLI's ``--uv``):
+
+- ``"charts"`` (default): uvfeat's own normal-cone charts, each projected onto the plane across
+  its cone's axis and checked to be injective as it grows, packed on shelves. About 0.15 s for
+  100K faces; the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
+- ``"xatlas"``: xatlas's optimised charts (fewer, rounder, less stretched; about 20 s for 100K
+  faces on two cores). Its result depends only on the mesh and the options, so it is cached on
+  disk, keyed by a hash of the positions, the faces, the options and the xatlas version: a second
+  run on the same mesh reads the atlas back in milliseconds. The cache lives in
+  ``$UVFEAT_CACHE_DIR`` (default ``$XDG_CACHE_HOME/uvfeat`` or ``~/.cache/uvfeat``);
+  ``UVFEAT_CACHE_DIR=off`` or ``cache=False`` turns it off. A cache file that cannot be read is
+  ignored and written anew.
 """
 
 from __future__ import annotations
@@ -18,7 +25,15 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _core
 from .errors import InvalidMeshError
+
+#: The unwrappers, default first.
+UNWRAP_METHODS = ("charts", "xatlas")
+
+#: What ``uvfeat.load(..., uv=...)`` and the CLI's ``--uv`` accept: the file's UVs, or a new atlas
+#: by one of the unwrappers.
+UV_POLICIES = ("auto", "require") + UNWRAP_METHODS
 
 #: Changes whenever what a cache file holds, or how the atlas is made, changes.
 _CACHE_FORMAT = 1
@@ -31,6 +46,41 @@ def cache_dir() -> Path | None:
         return None if configured.strip().lower() in ("", "off", "0", "none") else Path(configured)
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     return Path(base) / "uvfeat"
+
+
+def chart_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 1024, padding: float = 4.0,
+              max_angle: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Normal-cone charts packed into the unit square (uvfeat's own unwrapper).
+
+    Parameters
+    ----------
+    positions : (n_vertices, 3) float64
+    faces : (n_faces, 3) int64
+    resolution : int
+        Texture size the packing is made for; ``padding`` is in texels at that size.
+    padding : float
+        Gutter between charts, in texels at ``resolution``.
+    max_angle : float, optional
+        Half-angle in degrees of each chart's normal cone, in (0, 90); default 60. Smaller angles
+        give more charts with less stretch (at most ``1 / cos(max_angle)``).
+
+    Returns
+    -------
+    uvs : (n_uvs, 2) float64 in [0, 1]
+    uv_faces : (n_faces, 3) int64, in the order of ``faces``
+
+    Raises
+    ------
+    InvalidMeshError
+        Non-finite positions, out-of-range faces.
+    InvalidParameterError
+        An option out of range, or more charts than ``resolution`` has room for.
+    """
+    positions = np.ascontiguousarray(positions, dtype=np.float64)
+    faces = np.ascontiguousarray(faces, dtype=np.int64)
+    uvs, uv_faces, _ = _core.unwrap(positions, faces, resolution=int(resolution), padding=float(padding),
+                                    max_angle=None if max_angle is None else float(max_angle))
+    return uvs, uv_faces
 
 
 def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 1024, padding: int = 4,

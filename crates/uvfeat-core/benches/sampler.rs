@@ -4,7 +4,7 @@
 //! any parametric sampler: a bare bilinear gather of the position buffer over the same ellipses
 //! (same texels, samples and footprint; no relocation, no estimator).
 //!
-//!     cargo bench -p uvfeat-core --bench sampler [-- --radius 4 --samples 256 --paths shared,fast,exact]
+//!     cargo bench -p uvfeat-core --bench sampler [-- --radius 4 --samples 256 --paths shared,fast,exact --no-floors]
 
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -228,7 +228,12 @@ fn main() {
     }
     let drawn = results[0].1.summary.texels as f64 * samples as f64;
     let planes = Planes::new(&atlas);
-    for (bilinear, name) in [(true, "bilinear SoA, 12 loads"), (false, "nearest texel AoS, 1 load")] {
+    let floors: &[(bool, &str)] = if args.iter().any(|a| a == "--no-floors") {
+        &[]
+    } else {
+        &[(true, "bilinear SoA, 12 loads"), (false, "nearest texel AoS, 1 load")]
+    };
+    for &(bilinear, name) in floors {
         let (floor_cpu, floor_inside) = gather_floor(&atlas, &planes, bilinear, radius, samples, 512);
         let ratios: Vec<String> =
             results.iter().map(|(path, _, cpu)| format!("{path:?} / floor {:.2}x", cpu / floor_cpu)).collect();

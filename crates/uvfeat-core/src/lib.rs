@@ -4,7 +4,8 @@
 //! (Andreadis, Papaioannou, Mavridis, GRAPP 2015). The modules follow the pipeline, each using
 //! only the ones above it (checked by the test suite):
 //!
-//! 1. [`mesh`]: validated input, welding, charts, edge classes, seam transition maps;
+//! 1. [`mesh`]: validated input, welding, charts, edge classes, seam transition maps; and
+//!    [`unwrap`], an automatic UV atlas for a mesh that has none;
 //! 2. [`distortion`] and [`frame`]: the local metric and the per-frame quantities;
 //! 3. [`raster`]: rasterised coverage and per-frame geometry buffers;
 //! 4. [`atlas`]: the object tying them together, rebuilt per frame;
@@ -38,6 +39,7 @@ pub mod sampling;
 pub mod settings;
 pub mod shapes;
 pub mod tile_evaluation;
+pub mod unwrap;
 
 pub use atlas::{Atlas, AtlasOptions};
 pub use error::{Result, UvfeatError};

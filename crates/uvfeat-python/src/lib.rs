@@ -9,6 +9,7 @@ mod output;
 mod reference;
 mod settings;
 mod shapes;
+mod unwrap;
 
 use pyo3::prelude::*;
 
@@ -19,6 +20,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mesh::PyTopology>()?;
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
+    m.add_function(wrap_pyfunction!(unwrap::unwrap_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::atlas_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(settings::feature_names, m)?)?;
     m.add_function(wrap_pyfunction!(settings::default_options, m)?)?;

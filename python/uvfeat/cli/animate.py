@@ -13,6 +13,7 @@ from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
 from ..options import ARGUMENT_DEFAULTS
 from ..surface_plot import VIEWS
+from ..unwrap import UV_POLICIES
 from ..writers import write_json
 from .common import add_atlas_options, add_cluster_options, add_feature_options, console, print_dashboard, throughput
 
@@ -34,7 +35,7 @@ def add_command(commands) -> None:
                         "diagonal of the mesh as loaded (default 2%%)")
     add_atlas_options(parser)
     add_feature_options(parser)
-    parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto", help="as for `uvfeat atlas`")
+    parser.add_argument("--uv", choices=UV_POLICIES, default="auto", help="as for `uvfeat atlas`")
     parser.add_argument("--seed", type=int, default=ARGUMENT_DEFAULTS["seed"], help="sample-pattern seed, the same for every frame")
     add_cluster_options(parser)
     parser.add_argument("--frames-per-task", type=int, metavar="N", help="with --scheduler/--workers: frames per "

@@ -8,6 +8,7 @@ import contextlib
 import time
 
 from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, FEATURES
+from ..unwrap import UV_POLICIES
 
 MESH_HELP = "mesh file (obj, ply, glb, gltf, off, stl)"
 
@@ -86,9 +87,10 @@ def add_atlas_options(parser: argparse.ArgumentParser) -> None:
 
 
 def add_uv_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--uv", choices=("auto", "require", "xatlas"), default="auto",
-                        help="auto: use the file's UVs, xatlas when there are none or they overlap (default); "
-                        "require: the file's UVs as they are, fail without UVs; xatlas: always build a new atlas")
+    parser.add_argument("--uv", choices=UV_POLICIES, default="auto",
+                        help="auto: use the file's UVs, an automatic atlas (charts) when there are none or they "
+                        "overlap (default); require: the file's UVs as they are, fail without UVs; charts: always "
+                        "build uvfeat's normal-cone atlas (fast); xatlas: always build xatlas's atlas (slow, cached)")
     parser.add_argument("--strict-uv", action="store_true", help="fail on UVs outside [0, 1] instead of normalising them")
 
 

@@ -13,3 +13,4 @@ mod rasterisation;
 mod reference;
 mod seams;
 mod shared_lattice;
+mod unwrap;

@@ -4,7 +4,7 @@
 //! lattice must be as accurate as the exact path or better, and against each other within the
 //! exact path's own noise.
 
-use crate::support::{atlas, median, patchwork_sphere};
+use crate::support::{atlas, errors, median, patchwork_sphere, unit_sphere, Truth};
 use glam::{DVec2, DVec3, Vec2};
 use uvfeat_core::features::Feature;
 use uvfeat_core::lookup::Lookup;
@@ -27,13 +27,6 @@ fn maps(atlas: &Atlas, radius: f64, path: SamplingPath) -> FeatureMaps {
     FeatureMaps::compute(atlas, &settings(radius, path)).expect("valid settings")
 }
 
-/// The analytic `(H, K)` at a surface point.
-type Truth = fn(DVec3) -> (f64, f64);
-
-fn unit_sphere(_: DVec3) -> (f64, f64) {
-    (1.0, 1.0)
-}
-
 fn torus_2_05(p: DVec3) -> (f64, f64) {
     let (major, minor) = (2.0, 0.5);
     let cos_v = ((p.x.hypot(p.y) - major) / minor).clamp(-1.0, 1.0);
@@ -49,26 +42,6 @@ fn ellipsoid_axes(p: DVec3) -> (f64, f64) {
     let abc2 = (a * b * c).powi(2);
     let mean = (a * a + b * b + c * c - p.length_squared()) / (2.0 * abc2 * g.powf(1.5));
     (mean, 1.0 / (abc2 * g * g))
-}
-
-/// Median relative errors of H and K over the texels, against `truth` at each texel's centre.
-fn errors(atlas: &Atlas, maps: &FeatureMaps, truth: Truth) -> [f64; 2] {
-    let w = maps.resolution;
-    let mut out = [0.0; 2];
-    for (k, slot) in out.iter_mut().enumerate() {
-        let pairs: Vec<(f64, f64)> = (0..w * w)
-            .filter(|&t| maps.n_valid[t] > 0)
-            .filter_map(|t| {
-                let uv = DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64);
-                let centre = centre_at(atlas, uv, Lookup::Triangle)?;
-                let exact = if k == 0 { truth(centre.position).0 } else { truth(centre.position).1 };
-                Some((f64::from(maps.values[k][t]) - exact, exact.abs()))
-            })
-            .collect();
-        let scale = median(pairs.iter().map(|p| p.1).collect());
-        *slot = median(pairs.iter().map(|p| p.0.abs()).collect()) / scale;
-    }
-    out
 }
 
 fn assert_as_accurate(name: &str, atlas: &Atlas, radius: f64, truth: Truth) -> [f64; 2] {

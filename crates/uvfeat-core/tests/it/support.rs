@@ -2,7 +2,10 @@
 
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
+use uvfeat_core::lookup::Lookup;
 use uvfeat_core::mesh::{Topology, TriangleMesh};
+use uvfeat_core::output::FeatureMaps;
+use uvfeat_core::sampling::centre_at;
 use uvfeat_core::shapes::{uv_sphere, ShapeMesh};
 use uvfeat_core::{Atlas, AtlasOptions};
 
@@ -58,4 +61,31 @@ pub fn patchwork_sphere(blocks: usize) -> ShapeMesh {
     }
     mesh.uvs = uvs;
     mesh
+}
+
+/// The analytic `(H, K)` at a surface point.
+pub type Truth = fn(DVec3) -> (f64, f64);
+
+pub fn unit_sphere(_: DVec3) -> (f64, f64) {
+    (1.0, 1.0)
+}
+
+/// Median relative errors of H and K over the texels, against `truth` at each texel's centre.
+pub fn errors(atlas: &Atlas, maps: &FeatureMaps, truth: Truth) -> [f64; 2] {
+    let w = maps.resolution;
+    let mut out = [0.0; 2];
+    for (k, slot) in out.iter_mut().enumerate() {
+        let pairs: Vec<(f64, f64)> = (0..w * w)
+            .filter(|&t| maps.n_valid[t] > 0)
+            .filter_map(|t| {
+                let uv = DVec2::new(((t % w) as f64 + 0.5) / w as f64, ((t / w) as f64 + 0.5) / w as f64);
+                let centre = centre_at(atlas, uv, Lookup::Triangle)?;
+                let exact = if k == 0 { truth(centre.position).0 } else { truth(centre.position).1 };
+                Some((f64::from(maps.values[k][t]) - exact, exact.abs()))
+            })
+            .collect();
+        let scale = median(pairs.iter().map(|p| p.1).collect());
+        *slot = median(pairs.iter().map(|p| p.0.abs()).collect()) / scale;
+    }
+    out
 }
