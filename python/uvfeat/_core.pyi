@@ -14,6 +14,7 @@ __all__ = [
     "Atlas",
     "shape",
     "unwrap",
+    "rasterise_screen",
     "atlas_bytes",
     "ComputeSettings",
     "FeatureMaps",
@@ -49,6 +50,11 @@ def unwrap(
     max_angle: float | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.int64], int]:
     """Normal-cone charts packed into the unit square: ``(uvs, uv_faces, n_charts)``."""
+
+def rasterise_screen(
+    screen: NDArray[np.float64], faces: NDArray[np.int64], height: int, width: int
+) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """Nearest face per pixel (``(height, width)``, -1 where none) and its barycentric weights."""
 
 @final
 class Topology:

@@ -79,7 +79,7 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     import matplotlib
 
     from .images import FEATURE_UNITS, colour_range, offscreen_figure
-    from .render import UP_AXES, draw_vertex_values
+    from .render import UP_AXES, draw_vertex_values, front_side
 
     if up not in UP_AXES:
         raise InvalidParameterError(f"up must be one of {sorted(UP_AXES)}, got {up!r}")
@@ -100,10 +100,11 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     # The colour bar first: it takes its room from the panels, which then render at their final size.
     fig.colorbar(matplotlib.cm.ScalarMappable(matplotlib.colors.Normalize(low, high), cmap), ax=axes.ravel().tolist(),
                  fraction=0.04, pad=0.03, panchor=False, label=f"{feature} ({unit})" if unit else feature)
+    front = front_side(mesh.positions, mesh.faces)
     for column, (row_values, label) in enumerate(zip(rows, labels or [None] * len(rows))):
         for line, angles_of_view in enumerate(angles):
             draw_vertex_values(axes[line, column], mesh.positions, mesh.faces, row_values, cmap, low, high,
-                               view=angles_of_view, up=up)
+                               view=angles_of_view, up=up, front=front)
             if line == 0 and label:
                 axes[line, column].set_title(f"r = {label}")
     fig.suptitle(title if title is not None else f"{mesh.name}: {feature}")
@@ -128,6 +129,8 @@ class FixedCamera:
     centre: np.ndarray
     bounds: tuple[np.ndarray, np.ndarray]
     pixels_per_unit: float
+    #: The animated mesh's :func:`~uvfeat.render.front_side`, worked out on the first frame.
+    front: int | None = None
 
     @classmethod
     def framing(cls, positions: np.ndarray, view="three_quarter", up: str = "y", pixels: int = 480,
@@ -147,9 +150,11 @@ class FixedCamera:
     def picture(self, positions: np.ndarray, faces: np.ndarray, values: np.ndarray, cmap: str, low: float,
                 high: float) -> np.ndarray:
         """(H, W, 3) uint8 picture of the mesh at ``positions`` coloured by ``values``, on white."""
-        from .render import render_values
+        from .render import front_side, render_values
 
+        if self.front is None:
+            self.front = front_side(positions, faces)
         rgba = render_values(positions, faces, values, cmap, low, high, self.view, self.up, self.pixels_per_unit,
-                             self.bounds, self.centre)
+                             self.bounds, self.centre, self.front)
         rgb = rgba[..., :3] * rgba[..., 3:] + (1.0 - rgba[..., 3:])
         return (np.clip(rgb, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8)

@@ -30,8 +30,9 @@ def write_per_vertex(out: str, tag: str, mesh: Mesh, radius: float, values: dict
     arrays = dict(values)
     if directions is not None:
         arrays["principal_directions"] = directions
-    np.savez_compressed(os.path.join(out, f"per_vertex_r{tag}.npz"), positions=mesh.positions, faces=mesh.faces,
-                        radius=radius, **arrays)
+    # Uncompressed: zlib took longer than the features of a 280K-face mesh (0.46 s against 0.5 s).
+    np.savez(os.path.join(out, f"per_vertex_r{tag}.npz"), positions=mesh.positions, faces=mesh.faces,
+             radius=radius, **arrays)
     ply = trimesh.Trimesh(mesh.positions, mesh.faces, process=False)
     first = next(iter(values))
     ply.vertex_attributes["quality"] = values[first].astype(np.float32)

@@ -7,6 +7,7 @@ mod error;
 mod mesh;
 mod output;
 mod reference;
+mod screen;
 mod settings;
 mod shapes;
 mod unwrap;
@@ -21,6 +22,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<atlas::PyAtlas>()?;
     m.add_function(wrap_pyfunction!(shapes::shape, m)?)?;
     m.add_function(wrap_pyfunction!(unwrap::unwrap_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(screen::rasterise_screen_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::atlas_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(settings::feature_names, m)?)?;
     m.add_function(wrap_pyfunction!(settings::default_options, m)?)?;

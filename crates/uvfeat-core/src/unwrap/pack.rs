@@ -10,6 +10,9 @@
 use glam::DVec2;
 use rayon::prelude::*;
 
+/// Charts whose box has at most this many blocks are placed as their box.
+const SMALL_BOX_BLOCKS: usize = 16;
+
 /// Moves `uvs` (object units, per chart) into `[0, 1]^2`.
 ///
 /// # Returns
@@ -33,24 +36,39 @@ pub(super) fn pack(
         return None;
     }
     let area: f64 = frames.iter().map(|f| f.size.x * f.size.y).sum::<f64>().max(f64::MIN_POSITIVE);
-    // Scales from the area bound down by 10 % steps to the first that packs, then one step of
-    // bisection between the last failure and that success.
-    let mut failed = (resolution as f64) / area.sqrt();
-    let mut scale = 0.9 * failed;
-    let mut origins = loop {
-        if let Some(origins) = place(&local, uv_faces, &chart_faces, scale, block, grid) {
-            break origins;
+    // Boxes bound the scale only loosely: ragged charts nest into each other's boxes. So walk by
+    // 10 % steps from the box-area bound, down to the first scale that packs or up to the first
+    // that does not, then bisect that step once.
+    let mut scale = (resolution as f64) / area.sqrt();
+    let pack_at = |scale: f64| place(&local, uv_faces, &chart_faces, scale, block, grid);
+    let smallest = 1e-3 / frames.iter().map(|f| f.size.max_element()).fold(f64::MIN_POSITIVE, f64::max);
+    let (mut packed, failed) = match pack_at(scale) {
+        Some(origins) => {
+            let mut packed = (scale, origins);
+            loop {
+                scale /= 0.9;
+                match pack_at(scale) {
+                    Some(origins) => packed = (scale, origins),
+                    None => break (packed, scale),
+                }
+            }
         }
-        failed = scale;
-        scale *= 0.9;
-        if scale * frames.iter().map(|f| f.size.max_element()).fold(0.0, f64::max) < 1e-3 {
-            return None;
-        }
+        None => loop {
+            let failed = scale;
+            scale *= 0.9;
+            if scale < smallest {
+                return None;
+            }
+            if let Some(origins) = pack_at(scale) {
+                break ((scale, origins), failed);
+            }
+        },
     };
-    let middle = (scale * failed).sqrt();
-    if let Some(better) = place(&local, uv_faces, &chart_faces, middle, block, grid) {
-        (scale, origins) = (middle, better);
+    let middle = (packed.0 * failed).sqrt();
+    if let Some(origins) = pack_at(middle) {
+        packed = (middle, origins);
     }
+    let (scale, origins) = packed;
     for (uv, (&chart, p)) in uvs.iter_mut().zip(uv_chart.iter().zip(&local)) {
         *uv = (origins[chart as usize] * block + *p * scale) / resolution as f64;
     }
@@ -129,6 +147,17 @@ impl Mask {
 
     fn get(&self, x: usize, y: usize) -> bool {
         self.bits[y * self.words + x / 64] >> (x % 64) & 1 == 1
+    }
+
+    /// The mask with every block of its box set.
+    fn filled(&self) -> Mask {
+        let mut out = Mask::new(self.width, self.height);
+        for y in 0..self.height {
+            for x in 0..self.width {
+                out.set(x, y);
+            }
+        }
+        out
     }
 
     /// The mask grown by one block in all eight directions (one block larger on every side).
@@ -214,6 +243,15 @@ fn place(
     let mut resume: std::collections::HashMap<(usize, usize), usize> = std::collections::HashMap::new();
     for chart in order {
         let mask = &masks[chart];
+        // Small charts are placed as their whole box: it costs them little room and lets their
+        // search resume where the last box of their size was placed.
+        let boxed;
+        let mask = if mask.width * mask.height <= SMALL_BOX_BLOCKS {
+            boxed = mask.filled();
+            &boxed
+        } else {
+            mask
+        };
         let grown = mask.dilated();
         let solid = mask.bits.iter().enumerate().all(|(k, &w)| w.count_ones() as usize == full_bits(mask, k));
         let start = if solid { resume.get(&(mask.width, mask.height)).copied().unwrap_or(0) } else { 0 };
@@ -251,10 +289,21 @@ mod tests {
     use super::*;
 
     /// Two triangles per unit square at each `cell`, corners shared within a chart.
-    fn squares(cells: &[(f64, f64)], chart: u32, uvs: &mut Vec<DVec2>, uv_faces: &mut Vec<[u32; 3]>, uv_chart: &mut Vec<u32>) {
+    fn squares(
+        cells: &[(f64, f64)],
+        chart: u32,
+        uvs: &mut Vec<DVec2>,
+        uv_faces: &mut Vec<[u32; 3]>,
+        uv_chart: &mut Vec<u32>,
+    ) {
         for &(x, y) in cells {
             let base = uvs.len() as u32;
-            uvs.extend([DVec2::new(x, y), DVec2::new(x + 1.0, y), DVec2::new(x + 1.0, y + 1.0), DVec2::new(x, y + 1.0)]);
+            uvs.extend([
+                DVec2::new(x, y),
+                DVec2::new(x + 1.0, y),
+                DVec2::new(x + 1.0, y + 1.0),
+                DVec2::new(x, y + 1.0),
+            ]);
             uv_chart.extend([chart; 4]);
             uv_faces.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]);
         }
@@ -292,8 +341,10 @@ mod tests {
             }
         }
         // Boxes could not fill more than 5/9 of the L's box; the small charts sit in its notch.
-        let l_box = texels[..24].iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), t| (l.min(*t), h.max(*t)));
-        let nested = (24..uvs.len()).filter(|&k| texels[k].cmpgt(l_box.0).all() && texels[k].cmplt(l_box.1).all()).count();
+        let l_box =
+            texels[..24].iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), t| (l.min(*t), h.max(*t)));
+        let nested =
+            (24..uvs.len()).filter(|&k| texels[k].cmpgt(l_box.0).all() && texels[k].cmplt(l_box.1).all()).count();
         assert!(nested > 0, "no small chart inside the L's box");
     }
 

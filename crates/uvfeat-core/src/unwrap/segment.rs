@@ -13,6 +13,7 @@
 use glam::{DVec2, DVec3};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, VecDeque};
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// No face across this edge (a border, or a non-manifold edge, which charts never cross).
 pub(super) const NO_FACE: u32 = u32::MAX;
@@ -97,7 +98,7 @@ struct Growth {
     /// (n_faces) the chart that last looked at the face, so each chart weighs a face once.
     face_seen: Vec<u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
-    grid: HashMap<(i32, i32), Vec<u32>>,
+    grid: HashMap<(i32, i32), Vec<u32>, BuildHasherDefault<CellHasher>>,
     cell: f64,
 }
 
@@ -108,7 +109,7 @@ impl Growth {
             vertex_uv: vec![0; n_vertices],
             face_seen: vec![u32::MAX; n_faces],
             heap: BinaryHeap::new(),
-            grid: HashMap::new(),
+            grid: HashMap::default(),
             cell,
         }
     }
@@ -136,13 +137,16 @@ impl Growth {
         while let Some(Reverse((_, f))) = self.heap.pop() {
             let corners = graph.faces[f as usize].map(|v| project(graph.positions[v as usize]));
             let normal = graph.normals[f as usize];
-            let held = graph.neighbours[f as usize].iter().filter(|&&g| g != NO_FACE && face_chart[g as usize] == chart).count();
+            let held = graph.neighbours[f as usize]
+                .iter()
+                .filter(|&&g| g != NO_FACE && face_chart[g as usize] == chart)
+                .count();
             let tilt = normal.dot(axis);
             // A notch (a face the chart holds on two sides) may tilt further: refusing it would
             // leave it a chart of its own.
             let in_cone = tilt >= cone.cos_max_angle || (held >= 2 && tilt >= cone.cos_notch_angle);
             // A face without area has no interior to fold over anything: any chart may hold it.
-            let fits = f == seed || normal == DVec3::ZERO || (in_cone && !self.overlaps(&corners, charts));
+            let fits = f == seed || normal == DVec3::ZERO || (in_cone && !self.overlaps(graph, f, &corners, charts));
             if !fits {
                 if held < 2 && tilt >= cone.cos_notch_angle {
                     // It may become a notch as the chart grows: let its next neighbour offer it again.
@@ -181,20 +185,58 @@ impl Growth {
         (x0..=x1).flat_map(move |x| (y0..=y1).map(move |y| (x, y)))
     }
 
-    fn overlaps(&self, corners: &[DVec2; 3], charts: &Charts) -> bool {
+    /// Whether face `f` (projected to `corners`) overlaps a face the chart holds. An edge
+    /// neighbour cannot: both turn the same way, so they lie on either side of their shared edge.
+    fn overlaps(&self, graph: &FaceGraph, f: u32, corners: &[DVec2; 3], charts: &Charts) -> bool {
+        let (low, high) = (corners[0].min(corners[1]).min(corners[2]), corners[0].max(corners[1]).max(corners[2]));
+        let vertices = graph.faces[f as usize];
         self.cells(corners).any(|cell| {
             self.grid.get(&cell).is_some_and(|held| {
-                held.iter()
-                    .any(|&g| interiors_overlap(corners, &charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize])))
+                held.iter().any(|&g| {
+                    let other = charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize]);
+                    let (other_low, other_high) =
+                        (other[0].min(other[1]).min(other[2]), other[0].max(other[1]).max(other[2]));
+                    let apart = other_low.cmpge(high).any() || low.cmpge(other_high).any();
+                    let shared = graph.faces[g as usize].iter().filter(|v| vertices.contains(v)).count();
+                    !apart && shared < 2 && interiors_overlap(corners, &other)
+                })
             })
         })
     }
 
     fn insert(&mut self, f: u32, corners: &[DVec2; 3]) {
-        let cells: Vec<(i32, i32)> = self.cells(corners).collect();
-        for cell in cells {
-            self.grid.entry(cell).or_default().push(f);
+        let low = (corners[0].min(corners[1]).min(corners[2]) / self.cell).floor();
+        let high = (corners[0].max(corners[1]).max(corners[2]) / self.cell).floor();
+        for x in low.x as i32..=high.x as i32 {
+            for y in low.y as i32..=high.y as i32 {
+                self.grid.entry((x, y)).or_default().push(f);
+            }
         }
+    }
+}
+
+/// A multiplicative hash of grid cells: the guard's cells are small integers, where SipHash's
+/// protection against chosen keys only costs time (it was half of the charts' growth).
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+
+    fn write_i32(&mut self, value: i32) {
+        self.write_u64(value as u32 as u64);
+    }
+
+    fn write_u64(&mut self, value: u64) {
+        self.0 = (self.0.rotate_left(5) ^ value).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
     }
 }
 
