@@ -13,11 +13,29 @@ use rayon::prelude::*;
 /// Charts whose box has at most this many blocks are placed as their box.
 const SMALL_BOX_BLOCKS: usize = 16;
 
+/// Charts narrower than this many texels are enlarged until they are not: a smaller chart may
+/// cover no texel centre, and its faces would have no texels of their own. Their texels then
+/// cover less surface than elsewhere, which each face's metric accounts for.
+const MIN_CHART_TEXELS: f64 = 3.0;
+
+/// An enlarged chart's long side grows to at most this many texels (slivers stay small).
+const MAX_ENLARGED_TEXELS: f64 = 48.0;
+
+/// The scale of a chart of `size` (object units) when the atlas's scale is `scale`.
+fn chart_scale(size: DVec2, scale: f64) -> f64 {
+    let (narrow, long) = (size.min_element() * scale, size.max_element() * scale);
+    if narrow >= MIN_CHART_TEXELS || long == 0.0 {
+        return scale;
+    }
+    scale * (MIN_CHART_TEXELS / narrow).min(MAX_ENLARGED_TEXELS / long).max(1.0)
+}
+
 /// Moves `uvs` (object units, per chart) into `[0, 1]^2`.
 ///
 /// # Returns
-/// The scale in texels of `resolution` per object unit, or `None` when even the gutters do not
-/// fit (more charts than the resolution has room for).
+/// The scale in texels of `resolution` per object unit (charts narrower than
+/// [`MIN_CHART_TEXELS`] are enlarged beyond it), or `None` when even the gutters do not fit (more
+/// charts than the resolution has room for).
 pub(super) fn pack(
     uvs: &mut [DVec2],
     uv_faces: &[[u32; 3]],
@@ -40,7 +58,8 @@ pub(super) fn pack(
     // 10 % steps from the box-area bound, down to the first scale that packs or up to the first
     // that does not, then bisect that step once.
     let mut scale = (resolution as f64) / area.sqrt();
-    let pack_at = |scale: f64| place(&local, uv_faces, &chart_faces, scale, block, grid);
+    let sizes: Vec<DVec2> = frames.iter().map(|f| f.size).collect();
+    let pack_at = |scale: f64| place(&local, uv_faces, &chart_faces, &sizes, scale, block, grid);
     let smallest = 1e-3 / frames.iter().map(|f| f.size.max_element()).fold(f64::MIN_POSITIVE, f64::max);
     let (mut packed, failed) = match pack_at(scale) {
         Some(origins) => {
@@ -70,7 +89,8 @@ pub(super) fn pack(
     }
     let (scale, origins) = packed;
     for (uv, (&chart, p)) in uvs.iter_mut().zip(uv_chart.iter().zip(&local)) {
-        *uv = (origins[chart as usize] * block + *p * scale) / resolution as f64;
+        let chart_scale = chart_scale(sizes[chart as usize], scale);
+        *uv = (origins[chart as usize] * block + *p * chart_scale) / resolution as f64;
     }
     Some(scale)
 }
@@ -225,12 +245,16 @@ fn place(
     local: &[DVec2],
     uv_faces: &[[u32; 3]],
     chart_faces: &[Vec<u32>],
+    sizes: &[DVec2],
     scale: f64,
     block: f64,
     grid: usize,
 ) -> Option<Vec<DVec2>> {
-    let masks: Vec<Mask> =
-        chart_faces.par_iter().map(|faces| chart_mask(local, uv_faces, faces, scale, block)).collect();
+    let masks: Vec<Mask> = chart_faces
+        .par_iter()
+        .zip(sizes)
+        .map(|(faces, &size)| chart_mask(local, uv_faces, faces, chart_scale(size, scale), block))
+        .collect();
     if masks.iter().any(|m| m.width > grid || m.height > grid) {
         return None;
     }
@@ -346,6 +370,22 @@ mod tests {
         let nested =
             (24..uvs.len()).filter(|&k| texels[k].cmpgt(l_box.0).all() && texels[k].cmplt(l_box.1).all()).count();
         assert!(nested > 0, "no small chart inside the L's box");
+    }
+
+    #[test]
+    fn charts_too_narrow_for_a_texel_are_enlarged() {
+        let (mut uvs, mut uv_faces, mut uv_chart) = (Vec::new(), Vec::new(), Vec::new());
+        squares(&[(0.0, 0.0)], 0, &mut uvs, &mut uv_faces, &mut uv_chart);
+        let start = uvs.len();
+        squares(&[(3.0, 0.0)], 1, &mut uvs, &mut uv_faces, &mut uv_chart);
+        for uv in &mut uvs[start..] {
+            *uv = DVec2::new(uv.x * 0.01, uv.y * 0.001);
+        }
+        let scale = pack(&mut uvs, &uv_faces, &uv_chart, 2, 64, 2.0).expect("packs");
+        let texels = |k: usize| uvs[k] * 64.0;
+        assert!((texels(2) - texels(0)).x > 0.8 * scale, "the large chart keeps the atlas's scale");
+        let narrow = (texels(start + 2) - texels(start)).abs().min_element();
+        assert!(narrow >= MIN_CHART_TEXELS - 1e-9, "the small chart is {narrow} texels narrow");
     }
 
     #[test]
