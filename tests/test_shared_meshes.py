@@ -36,6 +36,7 @@ def test_scans_without_uvs_get_an_automatic_atlas(shared_mesh, name):
     atlas = uvfeat.Atlas(mesh, 1024)
     assert atlas.diagnostics["covered_texels"] > 0.3 * 1024**2
     assert atlas.diagnostics["overlapping_texels"] == 0
+    assert atlas.diagnostics["charts_without_texels"] <= 0.01 * mesh.n_charts
     assert np.isfinite(atlas.position[atlas.chart >= 0]).all()
 
 
