@@ -20,7 +20,7 @@ pub struct PyAtlas {
 }
 
 fn positions_of(array: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<DVec3>> {
-    Ok(rows::<f64, 3>(array, "positions")?.into_iter().map(DVec3::from_array).collect())
+    Ok(rows::<f64, 3>(array, "positions")?.iter().map(|p| DVec3::from_array(*p)).collect())
 }
 
 type Matrix = [[f64; 2]; 2];

@@ -28,7 +28,7 @@ impl PyTopology {
         let (p, f) = (rows::<f64, 3>(&positions, "positions")?, rows::<i64, 3>(&faces, "faces")?);
         let (uv, uvf) = (rows::<f64, 2>(&uvs, "uvs")?, rows::<i64, 3>(&uv_faces, "uv_faces")?);
         let inner = guarded(py, || {
-            let mesh = TriangleMesh::new(&p, &f, &uv, &uvf)?;
+            let mesh = TriangleMesh::new(p, f, uv, uvf)?;
             Topology::build(&mesh, weld_tolerance)
         })?;
         Ok(Self { inner: Arc::new(inner) })

@@ -20,7 +20,7 @@ impl PyReferenceMesh {
     #[new]
     fn new(py: Python<'_>, positions: PyReadonlyArray2<'_, f64>, faces: PyReadonlyArray2<'_, i64>) -> PyResult<Self> {
         let (p, f) = (rows::<f64, 3>(&positions, "positions")?, rows::<i64, 3>(&faces, "faces")?);
-        Ok(Self { inner: guarded(py, || ReferenceMesh::new(&p, &f))? })
+        Ok(Self { inner: guarded(py, || ReferenceMesh::new(p, f))? })
     }
 
     /// Number of welded vertices.

@@ -20,7 +20,7 @@ pub fn rasterise_screen_arrays<'py>(
     width: usize,
 ) -> PyResult<FragmentArrays<'py>> {
     let (points, triangles) = (rows::<f64, 3>(&screen, "screen")?, rows::<i64, 3>(&faces, "faces")?);
-    let fragments = guarded(py, || rasterise_screen(&points, &triangles, height, width))?;
+    let fragments = guarded(py, || rasterise_screen(points, triangles, height, width))?;
     Ok((
         to_numpy(py, fragments.face, &[height, width])?,
         to_numpy(py, flatten(&fragments.weights), &[height, width, 3])?,

@@ -27,7 +27,7 @@ pub fn unwrap_arrays<'py>(
         resolution: resolution.unwrap_or(defaults.resolution),
         padding: padding.unwrap_or(defaults.padding),
     };
-    let atlas = guarded(py, || unwrap(&p, &f, &options))?;
+    let atlas = guarded(py, || unwrap(p, f, &options))?;
     let (n_uvs, n_faces) = (atlas.uvs.len(), atlas.uv_faces.len());
     Ok((
         to_numpy(py, flatten(&atlas.uv_rows()), &[n_uvs, 2])?,

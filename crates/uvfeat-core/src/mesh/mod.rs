@@ -114,6 +114,14 @@ pub(crate) fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static st
         .collect()
 }
 
+/// Barycentric coordinates of `p` in the UV triangle `uv` (negative outside it).
+pub(crate) fn uv_barycentric(uv: &[DVec2; 3], p: DVec2) -> [f64; 3] {
+    let area2 = uv_signed_area2(uv);
+    let b1 = (p - uv[0]).perp_dot(uv[2] - uv[0]) / area2;
+    let b2 = (uv[1] - uv[0]).perp_dot(p - uv[0]) / area2;
+    [1.0 - b1 - b2, b1, b2]
+}
+
 /// Twice the signed area of a UV triangle.
 pub(crate) fn uv_signed_area2(uv: &[DVec2; 3]) -> f64 {
     (uv[1] - uv[0]).perp_dot(uv[2] - uv[0])

@@ -5,28 +5,35 @@ use super::feature_map::FeatureMaps;
 use crate::atlas::Atlas;
 use crate::evaluation::{evaluate_point, Patterns};
 use crate::features::CurvatureMethod;
+use crate::mesh::NO_CORNER;
 use crate::sampling::Placement;
 use crate::settings::{ComputeSettings, VertexQuery};
 use glam::DVec2;
 use rayon::prelude::*;
 
-/// Distinct `(uv, chart)` corners of every geometric vertex.
-fn corners(atlas: &Atlas) -> Vec<Vec<(DVec2, i32)>> {
+/// Distinct `(uv, chart)` corners of every geometric vertex: the atlas corners, which are
+/// numbered in order of their vertex, so vertex `g` has corners `offsets[g]..offsets[g + 1]`.
+/// (Flat, not a list per vertex: those lists took 140 bytes per vertex, the peak of a 5M-face run.)
+fn corners(atlas: &Atlas) -> (Vec<usize>, Vec<(DVec2, i32)>) {
     let topology = &atlas.topology;
-    let mut out = vec![Vec::new(); topology.n_geometric()];
-    for ((tri, walk), &chart) in topology.faces.iter().zip(&topology.walk_faces).zip(&topology.face_chart) {
-        let uv = &walk.corners;
-        if chart < 0 {
-            continue;
-        }
-        for k in 0..3 {
-            let list = &mut out[tri[k] as usize];
-            if !list.contains(&(uv[k], chart)) {
-                list.push((uv[k], chart));
+    let mut corners = vec![(DVec2::ZERO, -1); topology.n_corners];
+    let mut counts = vec![0usize; topology.n_geometric() + 1];
+    for (((tri, walk), &chart), groups) in
+        topology.faces.iter().zip(&topology.walk_faces).zip(&topology.face_chart).zip(&topology.corner_groups)
+    {
+        for k in (0..3).filter(|&k| groups[k] != NO_CORNER) {
+            let corner = &mut corners[groups[k] as usize];
+            if corner.1 < 0 {
+                *corner = (walk.corners[k], chart);
+                counts[tri[k] as usize + 1] += 1;
             }
         }
     }
-    out
+    let mut offsets = counts;
+    for g in 1..offsets.len() {
+        offsets[g] += offsets[g - 1];
+    }
+    (offsets, corners)
 }
 
 /// Bilinear lookup of every map at `uv`, using only texels of `chart` with accepted samples.
@@ -65,37 +72,32 @@ fn lookup(maps: &FeatureMaps, uv: DVec2, chart: i32) -> Option<Vec<f64>> {
 /// Per-vertex values of every map, one `Vec` per feature with one value per *input* vertex
 /// (vertices the file split at seams get the value of their welded vertex).
 pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
-    let corners = corners(atlas);
+    let (offsets, corners) = corners(atlas);
     let patterns = Patterns::new(settings);
-    let geometric: Vec<Vec<f64>> = corners
-        .par_iter()
-        .enumerate()
-        .map_init(Vec::new, |scratch, (vertex, list)| {
-            let mut found: Vec<Vec<f64>> = Vec::new();
-            if query == VertexQuery::Texture {
-                found.extend(list.iter().filter_map(|&(uv, chart)| lookup(maps, uv, chart)));
+    let n_features = maps.features.len();
+    let mut geometric = vec![f64::NAN; (offsets.len() - 1) * n_features];
+    geometric.par_chunks_mut(n_features.max(1)).enumerate().for_each_init(Vec::new, |scratch, (vertex, out)| {
+        let list = &corners[offsets[vertex]..offsets[vertex + 1]];
+        let mut found: Vec<Vec<f64>> = Vec::new();
+        if query == VertexQuery::Texture {
+            found.extend(list.iter().filter_map(|&(uv, chart)| lookup(maps, uv, chart)));
+        }
+        if found.is_empty() {
+            let placement = Placement::of_vertex(vertex as u32, settings.seed);
+            found.extend(list.iter().map(|&(uv, _)| {
+                let result = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
+                maps.features.iter().map(|f| f64::from(result.values[f.index()])).collect()
+            }));
+        }
+        for (f, slot) in out.iter_mut().enumerate() {
+            let finite: Vec<f64> = found.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
+            if !finite.is_empty() {
+                *slot = finite.iter().sum::<f64>() / finite.len() as f64;
             }
-            if found.is_empty() {
-                let placement = Placement::of_vertex(vertex as u32, settings.seed);
-                found.extend(list.iter().map(|&(uv, _)| {
-                    let result = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
-                    maps.features.iter().map(|f| f64::from(result.values[f.index()])).collect()
-                }));
-            }
-            (0..maps.features.len())
-                .map(|f| {
-                    let finite: Vec<f64> = found.iter().map(|v| v[f]).filter(|x| x.is_finite()).collect();
-                    if finite.is_empty() {
-                        f64::NAN
-                    } else {
-                        finite.iter().sum::<f64>() / finite.len() as f64
-                    }
-                })
-                .collect()
-        })
-        .collect();
+        }
+    });
     let ids = &atlas.topology.vertex_ids;
-    (0..maps.features.len()).map(|f| ids.iter().map(|&g| geometric[g as usize][f] as f32).collect()).collect()
+    (0..n_features).map(|f| ids.iter().map(|&g| geometric[g as usize * n_features + f] as f32).collect()).collect()
 }
 
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
@@ -104,14 +106,15 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
 pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[[f32; 3]; 2]> {
     let settings = ComputeSettings { method: CurvatureMethod::Fit, standard_errors: false, ..settings.clone() };
     let patterns = Patterns::new(&settings);
-    let geometric: Vec<[[f32; 3]; 2]> = corners(atlas)
-        .par_iter()
-        .enumerate()
-        .map_init(Vec::new, |scratch, (vertex, list)| {
+    let (offsets, corners) = corners(atlas);
+    let geometric: Vec<[[f32; 3]; 2]> = (0..offsets.len() - 1)
+        .into_par_iter()
+        .map_init(Vec::new, |scratch, vertex| {
             // The first corner where the fit succeeds: a corner UV on a chart's edge may fall on
             // a gutter texel of the raster, which has no centre.
             let placement = Placement::of_vertex(vertex as u32, settings.seed);
-            list.iter()
+            corners[offsets[vertex]..offsets[vertex + 1]]
+                .iter()
                 .map(|&(uv, _)| evaluate_point(atlas, uv, placement, &settings, &patterns, scratch).directions)
                 .find(|d| d[0][0].is_finite())
                 .unwrap_or([[f32::NAN; 3]; 2])

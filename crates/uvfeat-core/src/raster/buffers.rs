@@ -3,7 +3,7 @@
 
 use super::Coverage;
 use crate::frame::Frame;
-use crate::mesh::Topology;
+use crate::mesh::{uv_barycentric, Topology};
 use glam::DVec3;
 use half::f16;
 use rayon::prelude::*;
@@ -74,11 +74,11 @@ impl GeometryBuffers {
             .for_each(|(j, (((position, normal), sigma), theta))| {
                 for i in 0..row {
                     let t = j * row + i;
-                    let Ok(face) = usize::try_from(coverage.face[t]) else {
+                    let Some((face, uv)) = coverage.anchor(topology, t) else {
                         continue;
                     };
-                    let [b1, b2] = coverage.bary[t].map(f64::from);
-                    let weights = [1.0 - b1 - b2, b1, b2];
+                    let face = face as usize;
+                    let weights = uv_barycentric(&topology.corner_uvs(face), uv);
                     let tri = topology.faces[face];
                     let interpolate =
                         |values: &[DVec3]| -> DVec3 { (0..3).map(|k| values[tri[k] as usize] * weights[k]).sum() };

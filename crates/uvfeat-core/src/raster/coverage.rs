@@ -3,9 +3,10 @@
 //! normals and metrics from it (DESIGN.md §1.9, animation).
 
 use super::blocked::Blocked;
-use super::boundary::{rasterise_edge, EdgeHit};
+use super::boundary::{closest_on_segment, rasterise_edge, EdgeHit};
 use super::triangles::{rasterise_triangle, TriangleHit};
 use crate::mesh::Topology;
+use glam::DVec2;
 use rayon::prelude::*;
 
 /// Counts that describe a rasterisation.
@@ -33,8 +34,6 @@ pub struct Coverage {
     pub resolution: usize,
     /// Face shown by the texel (for gutter texels: the face of the closest boundary edge); -1 = empty.
     pub face: Vec<i32>,
-    /// Barycentric coordinates of corners 1 and 2 of `face` at the point shown.
-    pub bary: Vec<[f32; 2]>,
     /// Chart id; -1 = empty.
     pub chart: Vec<i32>,
     /// Boundary side (index into `Topology::sides`) closest to a border texel; -1 = not a border texel.
@@ -62,7 +61,6 @@ impl Coverage {
         let mut coverage = Self {
             resolution,
             face: vec![-1; n],
-            bary: vec![[0.0; 2]; n],
             chart: vec![-1; n],
             border_side: vec![-1; n],
             chart_distance: Blocked::default(),
@@ -81,6 +79,29 @@ impl Coverage {
             .collect();
         coverage.interior_face = Blocked::from_rows(&interior_face, resolution, u32::MAX);
         coverage
+    }
+
+    /// The face a texel shows and the UV of the point it shows: the texel centre where it lies in
+    /// the face, else (a gutter texel) the closest point of its closest boundary side. Recomputed,
+    /// not stored: 8 bytes per texel were 32 MiB at 2048².
+    pub fn anchor(&self, topology: &Topology, t: usize) -> Option<(u32, DVec2)> {
+        let face = u32::try_from(self.face[t]).ok()?;
+        let r = self.resolution as f64;
+        let centre = DVec2::new(((t % self.resolution) as f64 + 0.5) / r, ((t / self.resolution) as f64 + 0.5) / r);
+        let side = usize::try_from(self.border_side[t]).ok();
+        let inside = || {
+            let uv = topology.corner_uvs(face as usize);
+            let area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]);
+            (0..3).all(|k| (uv[(k + 1) % 3] - uv[k]).perp_dot(centre - uv[k]) * area.signum() >= -1e-12 * area.abs())
+        };
+        match side {
+            Some(side) if !inside() => {
+                let (_, [a, b]) = topology.side_endpoints(&topology.sides[side]);
+                let (_, along) = closest_on_segment(a, b, centre);
+                Some((face, a + (b - a) * along))
+            }
+            _ => Some((face, centre)),
+        }
     }
 
     fn rasterise_triangles(&mut self, topology: &Topology) {
@@ -103,7 +124,6 @@ impl Coverage {
             }
             let chart = topology.face_chart[hit.face as usize];
             self.face[t] = hit.face as i32;
-            self.bary[t] = hit.bary;
             self.chart[t] = chart;
             charts_seen[chart as usize] = true;
             self.diagnostics.covered_texels += 1;
@@ -139,11 +159,7 @@ impl Coverage {
             if self.face[t] < 0 {
                 let closest = &group[0];
                 let side = &topology.sides[closest.side as usize];
-                let mut bary = [0.0f32; 3];
-                bary[side.local as usize] = 1.0 - closest.along;
-                bary[(side.local as usize + 1) % 3] = closest.along;
                 self.face[t] = side.face as i32;
-                self.bary[t] = [bary[1], bary[2]];
                 self.chart[t] = side.chart;
                 self.border_side[t] = closest.side as i32;
                 self.diagnostics.gutter_texels += 1;

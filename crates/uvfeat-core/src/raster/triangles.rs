@@ -3,13 +3,12 @@
 
 use glam::DVec2;
 
-/// A texel whose centre lies in a triangle, with the centre's barycentric coordinates of
-/// corners 1 and 2 (corner 0 has `1 - b1 - b2`).
+/// A texel whose centre lies in a triangle (its barycentrics are recomputed where needed:
+/// [`super::Coverage::anchor`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct TriangleHit {
     pub texel: u32,
     pub face: u32,
-    pub bary: [f32; 2],
 }
 
 /// Twice the signed area of `(p, q, c)`, computed with the edge's endpoints in a canonical order
@@ -38,10 +37,10 @@ pub(crate) fn rasterise_triangle(face: u32, uv: [DVec2; 3], resolution: usize, o
     if area2 == 0.0 || !area2.is_finite() {
         return;
     }
-    // Work in counter-clockwise order; remember how corners were permuted for the barycentrics.
-    let order: [usize; 3] = if area2 > 0.0 { [0, 1, 2] } else { [0, 2, 1] };
-    v = order.map(|k| v[k]);
-    let area2 = area2.abs();
+    // Work in counter-clockwise order.
+    if area2 < 0.0 {
+        v.swap(1, 2);
+    }
     let lo = v[0].min(v[1]).min(v[2]);
     let hi = v[0].max(v[1]).max(v[2]);
     let last = resolution as f64 - 1.0;
@@ -54,16 +53,11 @@ pub(crate) fn rasterise_triangle(face: u32, uv: [DVec2; 3], resolution: usize, o
     for j in j0 as usize..=j1 as usize {
         for i in i0 as usize..=i1 as usize {
             let c = DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
-            // w[k] is opposite corner (k + 2) % 3: the weight of that corner times area2.
             let w = [0, 1, 2].map(|k| edge_function(v[k], v[(k + 1) % 3], c));
             if (0..3).any(|k| w[k] < 0.0 || (w[k] == 0.0 && !owned[k])) {
                 continue;
             }
-            let mut bary = [0.0f64; 3];
-            for k in 0..3 {
-                bary[order[(k + 2) % 3]] = w[k] / area2;
-            }
-            out.push(TriangleHit { texel: (j * resolution + i) as u32, face, bary: [bary[1] as f32, bary[2] as f32] });
+            out.push(TriangleHit { texel: (j * resolution + i) as u32, face });
         }
     }
 }
@@ -90,14 +84,11 @@ mod tests {
     }
 
     #[test]
-    fn mirrored_triangle_gives_the_same_barycentrics() {
+    fn a_mirrored_triangle_covers_the_same_texels() {
         let uv = [DVec2::new(0.1, 0.1), DVec2::new(0.9, 0.2), DVec2::new(0.3, 0.8)];
         let ccw = hits(uv, 32);
         let cw = hits([uv[0], uv[2], uv[1]], 32);
-        assert_eq!(ccw.len(), cw.len());
-        for (x, y) in ccw.iter().zip(&cw) {
-            assert_eq!(x.texel, y.texel);
-            assert!((x.bary[0] - y.bary[1]).abs() < 1e-6 && (x.bary[1] - y.bary[0]).abs() < 1e-6);
-        }
+        assert!(ccw.len() > 50);
+        assert_eq!(ccw.iter().map(|h| h.texel).collect::<Vec<_>>(), cw.iter().map(|h| h.texel).collect::<Vec<_>>());
     }
 }

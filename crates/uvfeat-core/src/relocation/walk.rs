@@ -148,11 +148,7 @@ fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(
         return None;
     }
     let texel = j * side + i;
-    let face = u32::try_from(coverage.face[texel]).ok()?;
-    let topology = &atlas.topology;
-    let [b1, b2] = coverage.bary[texel].map(f64::from);
-    let corners = topology.walk_faces[face as usize].corners;
-    let under_centre = corners[0] * (1.0 - b1 - b2) + corners[1] * b1 + corners[2] * b2;
+    let (face, under_centre) = coverage.anchor(&atlas.topology, texel)?;
     match walk_in_chart(atlas, face, None, under_centre, point, None) {
         Stop::Arrived { face } => Some((face, point)),
         Stop::Boundary { .. } | Stop::Lost => None,

@@ -343,7 +343,7 @@ mod tests {
             let start = uvs.len();
             squares(&[(5.0 * c as f64, 0.0)], c, &mut uvs, &mut uv_faces, &mut uv_chart);
             for uv in &mut uvs[start..] {
-                *uv = *uv / 3.0;
+                *uv /= 3.0;
             }
         }
         let before = uvs.clone();

@@ -1,8 +1,8 @@
 //! DESIGN.md §1.3.1–§1.3.2: coverage is exact at texel centres, complete and connected per chart.
 
-use crate::support::{atlas, barycentric, interpolate};
+use crate::support::{atlas, barycentric, interpolate, patchwork_sphere};
 use glam::DVec3;
-use uvfeat_core::shapes::{split_plane, torus, uv_sphere};
+use uvfeat_core::shapes::{cylinder, split_plane, torus, uv_sphere};
 use uvfeat_core::Atlas;
 
 fn max_position_error(atlas: &Atlas) -> f64 {
@@ -104,4 +104,37 @@ fn thin_sliver_chart_stays_connected_through_boundary_rasterisation() {
     let atlas = atlas(&shape, 512);
     assert_eq!(regions_per_chart(&atlas), vec![1]);
     assert!(atlas.coverage.diagnostics.border_texels > 400);
+}
+
+#[test]
+fn every_texel_anchors_at_its_centre_or_at_the_closest_point_of_its_side() {
+    for shape in [torus(2.0, 0.5, 48, 24), patchwork_sphere(6), cylinder(1.0, 2.0, 32, 8)] {
+        let res = 128;
+        let atlas = atlas(&shape, res);
+        let (coverage, topology) = (&atlas.coverage, &atlas.topology);
+        let (mut centres, mut gutters) = (0, 0);
+        for t in 0..res * res {
+            let Some((face, uv)) = coverage.anchor(topology, t) else {
+                assert!(coverage.face[t] < 0, "texel {t} shows a face but has no anchor");
+                continue;
+            };
+            let centre = atlas.texel_centre(t);
+            if uv == centre {
+                let b = barycentric(topology.corner_uvs(face as usize), uv);
+                assert!(b.iter().all(|&x| x >= -1e-9), "texel {t}: its centre is not in face {face}: {b:?}");
+                centres += 1;
+            } else {
+                // A gutter texel: the point is on its side, the closest one to the centre.
+                let side = &topology.sides[coverage.border_side[t] as usize];
+                let (_, [a, b]) = topology.side_endpoints(side);
+                let along = (uv - a).dot(b - a) / (b - a).length_squared();
+                assert!((a + (b - a) * along).distance(uv) < 1e-12 && (-1e-12..=1.0 + 1e-12).contains(&along));
+                let best =
+                    (0..=1000).map(|k| (a + (b - a) * (k as f64 / 1000.0)).distance(centre)).fold(f64::MAX, f64::min);
+                assert!(uv.distance(centre) <= best + 1e-12, "texel {t}: not the closest point of its side");
+                gutters += 1;
+            }
+        }
+        assert!(centres > 1000 && gutters > 50, "{centres} covered and {gutters} gutter texels");
+    }
 }
