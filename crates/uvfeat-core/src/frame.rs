@@ -186,15 +186,21 @@ impl Frame {
     /// parameterisations sample exactly as DESIGN.md §1.4 says. Zero for a face without a
     /// parameterisation.
     pub fn sampling_distortion(&self, topology: &Topology, face: u32, uv: DVec2) -> Distortion {
-        let Some(map) = self.face_map(topology, face) else {
+        // Only the face's UV triangle is needed here, not its whole map (built from the vertices:
+        // that was a fifth of a texel's centre on the shared lattice).
+        let face = face as usize;
+        let corners = topology.corner_uvs(face);
+        let to_barycentric = DMat2::from_cols(corners[1] - corners[0], corners[2] - corners[0]);
+        if topology.face_chart[face] < 0 || to_barycentric.determinant() == 0.0 {
             return ZERO_DISTORTION;
-        };
-        let own = self.distortion[face as usize];
+        }
+        let b = to_barycentric.inverse() * (uv - corners[0]);
+        let own = self.distortion[face];
         let smooth = Distortion::from_metric(interpolated_metric(
             topology,
             &self.corner_metrics,
-            face as usize,
-            map.barycentric(uv),
+            face,
+            [1.0 - b.x - b.y, b.x, b.y],
         ));
         let anisotropy = |d: &Distortion| d.sigma1 / d.sigma2.max(1e-300);
         if anisotropy(&own) > SLIVER_ANISOTROPY * anisotropy(&smooth) {
