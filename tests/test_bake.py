@@ -11,7 +11,7 @@ import trimesh
 from PIL import Image
 
 import uvfeat
-from uvfeat.bake import dilate, sample_bilinear
+from uvfeat.bake import dilate, fit_gutters, sample_bilinear
 from uvfeat.cli import main
 
 tifffile = pytest.importorskip("tifffile", reason="float TIFF needs the extra uvfeat[bake]")
@@ -42,19 +42,24 @@ def test_the_baked_texture_gives_back_the_per_vertex_values_without_seam_outlier
     mesh, feature = spot_map
     truth = feature.per_vertex()
     spread = np.percentile(truth, 99) - np.percentile(truth, 1)
-    baked, seam = read_back(mesh, dilate(feature.texture))
+    uvs, corner = feature.corner_values()
+    assert len(uvs) == len(np.unique(np.stack([mesh.faces.ravel(), mesh.uv_faces.ravel()], axis=1), axis=0))
+    assert np.isfinite(corner).all()
+    baked, seam = read_back(mesh, dilate(fit_gutters(feature.texture, uvs, corner)))
     error = np.abs(baked - truth) / spread
     assert seam.sum() > 300 and np.isfinite(baked).all()
-    # exact inside the charts, a few % of the range where the chart-masked lookup and plain
-    # bilinear filtering weigh a border footprint differently (docs/USAGE.md, "Bakes")
+    # exact inside the charts; at the seams within 1.5 % of the range (measured 1.41 % p99, 1.49 %
+    # max at this 128² texture; 0.26 / 0.42 % at 256²)
     assert np.median(error[~seam]) < 1e-6
-    assert np.percentile(error[seam], 99) < 0.08 and error[seam].max() < 0.12, error[seam].max()
-    # what the dilation prevents: gutters left at 0 pull seam corners towards 0
-    undilated, _ = read_back(mesh, np.nan_to_num(feature.texture))
-    undilated_error = (np.abs(undilated - truth) / spread)[seam]
-    print(f"seam error / range: dilated p99 {np.percentile(error[seam], 99):.4f} max {error[seam].max():.4f}; "
-          f"zero gutters p99 {np.percentile(undilated_error, 99):.4f} max {undilated_error.max():.4f}")
-    assert np.percentile(undilated_error, 99) > 2 * np.percentile(error[seam], 99)
+    assert np.percentile(error[seam], 99) < 0.02 and error[seam].max() < 0.025, error[seam].max()
+    # what the fit adds to a plain dilation (5.1 % p99), and what that adds to gutters left at 0
+    dilated, _ = read_back(mesh, dilate(feature.texture))
+    zero, _ = read_back(mesh, np.nan_to_num(feature.texture))
+    dilated_error, zero_error = ((np.abs(x - truth) / spread)[seam] for x in (dilated, zero))
+    print(f"seam error / range, p99: fitted {np.percentile(error[seam], 99):.4f}, dilated "
+          f"{np.percentile(dilated_error, 99):.4f}, zero gutters {np.percentile(zero_error, 99):.4f}")
+    assert np.percentile(dilated_error, 99) > 3 * np.percentile(error[seam], 99)
+    assert np.percentile(zero_error, 99) > 2 * np.percentile(dilated_error, 99)
 
 
 def test_dilation_fills_every_texel_and_keeps_the_filled_ones():

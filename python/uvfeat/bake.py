@@ -1,5 +1,5 @@
 """Bakes: a feature written the way other tools read it. A texture on the mesh's own UVs with its
-gutters dilated (16-bit PNG, float32 TIFF, and an 8-bit curvature map centred on 0.5 grey), GLB
+gutters fitted and dilated (16-bit PNG, float32 TIFF, and an 8-bit curvature map centred on 0.5 grey), GLB
 files coloured per vertex and by the texture, and a PLY whose ``quality`` property MeshLab reads
 (and Blender imports as an attribute). ``pip install 'uvfeat[bake]'`` brings SciPy (the
 dilation) and tifffile."""
@@ -48,17 +48,62 @@ def dilate(texture: np.ndarray) -> np.ndarray:
     return texture[nearest[0], nearest[1]]
 
 
-def sample_bilinear(texture: np.ndarray, uvs: np.ndarray) -> np.ndarray:
-    """Bilinear lookup of a ``(W, W)`` texture (``[j, i]``, v up, texel centres at ``(i + 0.5)/W``)
-    at ``(n, 2)`` UVs, clamped at the edges, as a GPU samples it."""
-    size = np.array(texture.shape[::-1], dtype=np.float64)
+def bilinear_footprints(shape: tuple[int, ...], uvs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The 2 x 2 texels a GPU's bilinear filter reads at each of ``(n, 2)`` UVs of a ``shape``
+    texture (``[j, i]``, v up, texel centres at ``(i + 0.5)/W``, clamped at the edges): flat texel
+    indices ``(n, 4)`` and their weights ``(n, 4)``."""
+    height, width = shape
+    size = np.array([width, height], dtype=np.float64)
     x = np.clip(uvs * size - 0.5, 0.0, size - 1.0)
     low = np.minimum(np.floor(x).astype(np.int64), (size - 2).astype(np.int64).clip(0))
     t = x - low
     i0, j0 = low[:, 0], low[:, 1]
-    i1, j1 = np.minimum(i0 + 1, texture.shape[1] - 1), np.minimum(j0 + 1, texture.shape[0] - 1)
-    return ((1 - t[:, 0]) * (1 - t[:, 1]) * texture[j0, i0] + t[:, 0] * (1 - t[:, 1]) * texture[j0, i1]
-            + (1 - t[:, 0]) * t[:, 1] * texture[j1, i0] + t[:, 0] * t[:, 1] * texture[j1, i1])
+    i1, j1 = np.minimum(i0 + 1, width - 1), np.minimum(j0 + 1, height - 1)
+    texels = np.stack([j0 * width + i0, j0 * width + i1, j1 * width + i0, j1 * width + i1], axis=1)
+    weights = np.stack([(1 - t[:, 0]) * (1 - t[:, 1]), t[:, 0] * (1 - t[:, 1]), (1 - t[:, 0]) * t[:, 1],
+                        t[:, 0] * t[:, 1]], axis=1)
+    return texels, weights
+
+
+def sample_bilinear(texture: np.ndarray, uvs: np.ndarray) -> np.ndarray:
+    """Bilinear lookup of a ``(W, W)`` texture at ``(n, 2)`` UVs as a GPU samples it (see
+    :func:`bilinear_footprints`)."""
+    texels, weights = bilinear_footprints(texture.shape, uvs)
+    return (texture.reshape(-1)[texels] * weights).sum(axis=1)
+
+
+def fit_gutters(texture: np.ndarray, uvs: np.ndarray, values: np.ndarray, smoothness: float = 1e-3) -> np.ndarray:
+    """The texture with the empty texels that the corners' bilinear footprints reach set so that a
+    renderer's read at each corner UV ``uvs`` gives its value ``values`` (least squares: where
+    several corners share an empty texel it takes their best compromise; a weak pull towards the
+    mean of its filled neighbours settles what the corners leave free). Filled texels are kept.
+
+    The values are :meth:`FeatureMap.corner_values`: the chart-masked lookup renormalises over the
+    filled texels of a footprint, which no single gutter value reproduces for every corner, so a
+    plain dilation left seam vertices a few % of the range off (``tests/test_bake.py``)."""
+    from .extras import require
+
+    sparse = require("scipy.sparse", "fitting texture gutters")
+    linalg = require("scipy.sparse.linalg", "fitting texture gutters")
+    texels, weights = bilinear_footprints(texture.shape, uvs)
+    flat = texture.reshape(-1).astype(np.float64)
+    empty = ~np.isfinite(flat[texels]) & (weights > 0)
+    rows = np.flatnonzero(empty.any(axis=1) & np.isfinite(values))
+    if len(rows) == 0:
+        return texture
+    empty, texels, weights = empty[rows], texels[rows], weights[rows]
+    unknown, column = np.unique(texels[empty], return_inverse=True)
+    known = np.where(empty, 0.0, weights * np.nan_to_num(flat[texels])).sum(axis=1)
+    corner_of = np.repeat(np.arange(len(rows)), empty.sum(axis=1))
+    fit = sparse.csr_matrix((weights[empty], (corner_of, column.ravel())), shape=(len(rows), len(unknown)))
+    prior = _average_into_first_ring(texture).reshape(-1)[unknown]
+    prior = np.where(np.isfinite(prior), prior, float(np.nanmean(values[rows])))
+    system = sparse.vstack([fit, smoothness * sparse.identity(len(unknown), format="csr")])
+    rhs = np.concatenate([values[rows] - known, smoothness * prior])
+    solution = linalg.lsqr(system, rhs, atol=1e-12, btol=1e-12, iter_lim=20 * len(unknown))[0]
+    out = flat.copy()
+    out[unknown] = solution
+    return out.reshape(texture.shape).astype(texture.dtype)
 
 
 def _png_text(fields: dict):
@@ -129,13 +174,15 @@ def write_glbs(out: str, stem: str, mesh: Mesh, per_vertex: np.ndarray, colour_t
 
 
 def bake_feature(out: str, stem: str, mesh: Mesh, name: str, texture: np.ndarray, per_vertex: np.ndarray,
-                 radius: float) -> dict[str, str]:
-    """Writes every bake of one feature at one radius; returns the paths by kind."""
+                 radius: float, corners: tuple[np.ndarray, np.ndarray] | None = None) -> dict[str, str]:
+    """Writes every bake of one feature at one radius; returns the paths by kind. ``corners`` (the
+    map's :meth:`~uvfeat.FeatureMap.corner_values`) fits the gutters the vertices' footprints
+    reach (:func:`fit_gutters`) before the rest is dilated."""
     from PIL import Image
 
-    filled = dilate(texture)
-    finite = texture[np.isfinite(texture)]
-    low, high = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+    filled = dilate(texture if corners is None else fit_gutters(texture, *corners))
+    # The range of what is written: fitted gutters may reach a little past the charts' values.
+    low, high = (float(filled.min()), float(filled.max())) if np.isfinite(texture).any() else (0.0, 1.0)
     fields = {"uvfeat.feature": name, "uvfeat.radius": repr(float(radius))}
     paths = {"png16": os.path.join(out, f"{stem}.png"), "tiff": os.path.join(out, f"{stem}.tif")}
     write_png16(paths["png16"], filled, low, high, fields)

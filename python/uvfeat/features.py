@@ -74,6 +74,26 @@ class FeatureMap:
         values = [per_feature[self._index] for per_feature in self._cache[query]]
         return values[0] if not self.is_stack else np.stack(values)
 
+    def corner_values(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every atlas corner (a vertex's distinct UV; seams give a vertex several): its UV
+        ``(n_corners, 2)`` and the value a texture read there should give ``(n_corners,)``: the
+        chart-masked bilinear lookup that :meth:`per_vertex` averages per vertex, or, where no
+        texel of the corner's chart has samples nearby (the average leaves such corners out), the
+        vertex's own value. Bakes fit their gutters to it. One radius: index a stack first."""
+        if self.is_stack:
+            raise InvalidParameterError("corner_values needs one radius; take one map of the stack first")
+        if "corners" not in self._cache:  # shared by the features of one computation
+            self._cache["corners"] = self._maps[0].per_corner(self._atlas._core)
+        uvs, vertex, values = self._cache["corners"]
+        corner = values[self._index].astype(np.float64)
+        missing = ~np.isfinite(corner)
+        if missing.any():
+            mesh = self._atlas.mesh
+            by_vertex = np.full(mesh.topology.n_geometric_vertices, np.nan)
+            by_vertex[mesh.vertex_ids] = self.per_vertex()
+            corner[missing] = by_vertex[vertex[missing]]
+        return uvs, corner
+
     def vertex_flags(self) -> dict[str, np.ndarray]:
         """Vertices whose values come from neighbourhoods that are not what the radius asks for
         (see :mod:`uvfeat.neighbourhood_flags`): ``{"truncated", "partly_missing",

@@ -8,8 +8,11 @@ use crate::settings::{named, PySettings};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use uvfeat_core::output::{neighbourhood_tile, per_vertex, per_vertex_directions, FeatureMaps};
+use uvfeat_core::output::{neighbourhood_tile, per_corner, per_vertex, per_vertex_directions, FeatureMaps};
 use uvfeat_core::settings::{ComputeSettings, VertexQuery};
+
+/// UVs and geometric vertices of the atlas corners, and one array of values per feature.
+type CornerArrays<'py> = (Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArrayDyn<i64>>, Vec<Bound<'py, PyArrayDyn<f32>>>);
 
 /// Maps of one computation (one radius).
 #[pyclass(name = "FeatureMaps", module = "uvfeat._core", frozen)]
@@ -111,6 +114,17 @@ impl PyFeatureMaps {
         Ok(out)
     }
 
+    /// The UV `(n_corners, 2)` and geometric vertex `(n_corners,)` of every atlas corner and, per
+    /// feature, its chart-masked texture lookup (list of `(n_corners,)` arrays, NaN where none).
+    fn per_corner<'py>(&self, py: Python<'py>, atlas: &PyAtlas) -> PyResult<CornerArrays<'py>> {
+        let (maps, core) = (&self.inner, atlas.core());
+        let (uvs, vertex, values) = guarded(py, || Ok(per_corner(core, maps)))?;
+        let n = uvs.len();
+        let uvs = to_numpy(py, uvs.iter().flat_map(|uv| uv.to_array()).collect(), &[n, 2])?;
+        let vertex = to_numpy(py, vertex.into_iter().map(i64::from).collect(), &[n])?;
+        Ok((uvs, vertex, values.into_iter().map(|v| to_numpy(py, v, &[n])).collect::<PyResult<_>>()?))
+    }
+
     /// Per-vertex values of every feature (list of (n_vertices,) arrays), by texture lookup or
     /// direct evaluation.
     fn per_vertex<'py>(
@@ -122,7 +136,13 @@ impl PyFeatureMaps {
         let query: VertexQuery = named(query)?;
         let (maps, settings, core) = (&self.inner, &self.settings, atlas.core());
         let values = guarded(py, || Ok(per_vertex(core, maps, settings, query)))?;
-        values.into_iter().map(|v| to_numpy(py, v.clone(), &[v.len()])).collect()
+        values
+            .into_iter()
+            .map(|v| {
+                let n = v.len();
+                to_numpy(py, v, &[n])
+            })
+            .collect()
     }
 }
 

@@ -47,7 +47,7 @@ def write_bakes(mesh, args, console, load_notes: list[str], started: float) -> d
             tag = radius_tag(computed.radius)
             files = {name: {kind: os.path.basename(path) for kind, path in
                             bake_feature(args.out, f"{name}_r{tag}", atlas.mesh, name, m.texture,
-                                         computed.per_vertex[name], m.radius).items()}
+                                         computed.per_vertex[name], m.radius, m.corner_values()).items()}
                      for name, m in computed.maps.items()}
             first = next(iter(computed.maps.values()))
             write_per_vertex(args.out, tag, atlas.mesh, first.radius, computed.per_vertex)

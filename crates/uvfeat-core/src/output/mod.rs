@@ -9,5 +9,5 @@ mod screen;
 
 pub use feature_map::{FeatureMaps, MapSummary, SEVERAL_SHEETS};
 pub use neighbourhood_tiles::{neighbourhood_tile, NeighbourhoodTile};
-pub use per_vertex::{per_vertex, per_vertex_directions};
+pub use per_vertex::{per_corner, per_vertex, per_vertex_directions};
 pub use screen::{rasterise_screen, ScreenFragments, NO_FACE};

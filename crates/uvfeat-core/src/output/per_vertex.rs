@@ -100,6 +100,21 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
     (0..n_features).map(|f| ids.iter().map(|&g| geometric[g as usize * n_features + f] as f32).collect()).collect()
 }
 
+/// Every atlas corner's UV and geometric vertex and, per feature, its chart-masked bilinear
+/// lookup (the value [`per_vertex`] averages over a vertex's corners; NaN where no texel of the
+/// corner's chart with samples is among the four nearest): what a texture read at that UV should
+/// give, which a bake's gutters are fitted to.
+pub fn per_corner(atlas: &Atlas, maps: &FeatureMaps) -> (Vec<DVec2>, Vec<u32>, Vec<Vec<f32>>) {
+    let (offsets, corners) = corners(atlas);
+    let values: Vec<Option<Vec<f64>>> = corners.par_iter().map(|&(uv, chart)| lookup(maps, uv, chart)).collect();
+    let per_feature = (0..maps.features.len())
+        .map(|f| values.iter().map(|v| v.as_ref().map_or(f32::NAN, |v| v[f] as f32)).collect())
+        .collect();
+    let vertex =
+        offsets.windows(2).enumerate().flat_map(|(g, range)| std::iter::repeat_n(g as u32, range[1] - range[0]));
+    (corners.iter().map(|&(uv, _)| uv).collect(), vertex.collect(), per_feature)
+}
+
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
 /// at one corner UV of the vertex (a line field has no sign, so texels cannot be averaged
 /// bilinearly like scalar maps); NaN where the fit failed.
