@@ -173,3 +173,33 @@ fn surface_point_of(atlas: &Atlas, uv: DVec2, chart: i32) -> DVec3 {
     let home = uvfeat_core::relocation::home(atlas, uv, chart).unwrap();
     uvfeat_core::lookup::evaluate_face(atlas, home.face, home.point).unwrap().position
 }
+
+#[test]
+fn per_vertex_values_are_the_mean_of_the_corner_lookups() {
+    use uvfeat_core::output::{per_corner, per_vertex, FeatureMaps};
+    use uvfeat_core::settings::{ComputeSettings, VertexQuery};
+    // A patchwork sphere: most vertices on a seam have two to four corners in different charts.
+    let atlas = crate::support::atlas(&crate::support::patchwork_sphere(4), 256);
+    let mut settings = ComputeSettings::new(vec![uvfeat_core::features::Feature::MeanCurvature], 0.3);
+    settings.resolution = 96;
+    let maps = FeatureMaps::compute(&atlas, &settings).expect("valid settings");
+    let (uvs, vertex, corners) = per_corner(&atlas, &maps);
+    assert_eq!((uvs.len(), vertex.len()), (atlas.topology.n_corners, atlas.topology.n_corners));
+    let values = per_vertex(&atlas, &maps, &settings, VertexQuery::Texture);
+    let n = atlas.topology.n_geometric();
+    let (mut sums, mut counts) = (vec![0.0f64; n], vec![0usize; n]);
+    for (&g, &v) in vertex.iter().zip(&corners[0]) {
+        if v.is_finite() {
+            sums[g as usize] += f64::from(v);
+            counts[g as usize] += 1;
+        }
+    }
+    let several = counts.iter().filter(|&&c| c > 1).count();
+    assert!(several > 50, "{several} vertices with several corners");
+    for (input, &g) in atlas.topology.vertex_ids.iter().enumerate() {
+        if counts[g as usize] > 0 {
+            let mean = sums[g as usize] / counts[g as usize] as f64;
+            assert!((f64::from(values[0][input]) - mean).abs() < 1e-5, "vertex {input}");
+        }
+    }
+}
