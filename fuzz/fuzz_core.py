@@ -1,6 +1,7 @@
 """Fuzzes the core entry points on random arrays: ``Mesh`` (positions, faces, UVs with NaN, Inf,
 huge and out-of-range values), ``Atlas``, ``Atlas.compute``, ``Atlas.locate`` and ``Atlas.update``
-with random parameters. Run (no corpus needed)::
+with random parameters, the automatic atlas (``uvfeat.unwrap.chart_uvs``) and the pictures' z-buffer
+(``uvfeat.render.rasterise``). Run (no corpus needed)::
 
     .venv/bin/python fuzz/fuzz_core.py fuzz/corpus/core -max_total_time=60 -timeout=20
 
@@ -17,6 +18,7 @@ import numpy as np
 with atheris.instrument_imports():
     import uvfeat
     from harness import EXPECTED, numbers, quiet
+    from uvfeat.render import rasterise
 
 FEATURES = uvfeat.options.FEATURES
 RADII = (-1.0, 0.0, float("nan"), 1e-9, 0.05, 0.3, 1e9)
@@ -65,6 +67,17 @@ def run(data: bytes) -> None:
         target = tuple(numbers(fdp.ConsumeBytes(16), 2))
         atlas.locate(start, target, max_jumps=fdp.ConsumeIntInRange(0, 40))
         atlas.update(positions * fdp.ConsumeFloat())
+    except EXPECTED:
+        pass
+    try:
+        uvs, uv_faces = uvfeat.unwrap.chart_uvs(positions, faces, resolution=fdp.PickValueInList([1, 8, 64, 1024]),
+                                                padding=fdp.PickValueInList([0.0, 2.0, 4.0, -1.0]),
+                                                max_angle=fdp.PickValueInList([1.0, 45.0, 89.0, 0.0, float("nan")]))
+        uvfeat.Atlas(uvfeat.Mesh(positions, faces, uvs=uvs, uv_faces=uv_faces), 32)
+    except EXPECTED:
+        pass
+    try:
+        rasterise(positions * fdp.ConsumeFloat(), faces, fdp.ConsumeIntInRange(0, 48), fdp.ConsumeIntInRange(0, 48))
     except EXPECTED:
         pass
 

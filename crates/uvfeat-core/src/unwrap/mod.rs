@@ -62,9 +62,13 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
     let input_positions = checked_positions(positions)?;
     let input_faces = checked_indices(faces, positions.len(), "vertex")?;
     let (vertex_ids, n_welded) = weld_positions(&input_positions, 0.0);
+    // Charts do not depend on the mesh's scale (the packing sets it): work in [-1, 1]^3, where no
+    // distance, area or cross product of finite coordinates overflows.
+    let largest = input_positions.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+    let unit = if largest > 0.0 { 1.0 / largest } else { 1.0 };
     let mut welded = vec![DVec3::ZERO; n_welded];
     for (p, &id) in input_positions.iter().zip(&vertex_ids) {
-        welded[id as usize] = *p;
+        welded[id as usize] = *p * unit;
     }
     let welded_faces: Vec<[u32; 3]> = input_faces.iter().map(|t| t.map(|v| vertex_ids[v as usize])).collect();
     let normals: Vec<DVec3> = welded_faces.par_iter().map(|t| unit_normal(t.map(|v| welded[v as usize]))).collect();

@@ -63,19 +63,26 @@ pub(super) fn pack(
     let smallest = 1e-3 / frames.iter().map(|f| f.size.max_element()).fold(f64::MIN_POSITIVE, f64::max);
     let (mut packed, failed) = match pack_at(scale) {
         Some(origins) => {
+            // At most 64 steps up (850x): charts without area fit at any scale.
             let mut packed = (scale, origins);
-            loop {
+            let mut failed = f64::INFINITY;
+            for _ in 0..64 {
                 scale /= 0.9;
-                match pack_at(scale) {
+                match pack_at(scale).filter(|_| scale.is_finite()) {
                     Some(origins) => packed = (scale, origins),
-                    None => break (packed, scale),
+                    None => {
+                        failed = scale;
+                        break;
+                    }
                 }
             }
+            (packed, failed)
         }
         None => loop {
             let failed = scale;
             scale *= 0.9;
-            if scale < smallest {
+            // `!(a >= b)` also ends the search on a NaN scale.
+            if !(scale >= smallest) {
                 return None;
             }
             if let Some(origins) = pack_at(scale) {
@@ -84,7 +91,7 @@ pub(super) fn pack(
         },
     };
     let middle = (packed.0 * failed).sqrt();
-    if let Some(origins) = pack_at(middle) {
+    if let Some(origins) = pack_at(middle).filter(|_| middle.is_finite()) {
         packed = (middle, origins);
     }
     let (scale, origins) = packed;
@@ -203,12 +210,23 @@ impl Mask {
     }
 }
 
-/// The blocks of a chart at `scale`: every block its triangles may touch (their bounding boxes,
+/// The blocks of a chart at `scale` (`None` when it spans more than `grid` blocks): every block its triangles may touch (their bounding boxes,
 /// refined by a separating-axis test for triangles wider than a block).
-fn chart_mask(local: &[DVec2], uv_faces: &[[u32; 3]], faces: &[u32], scale: f64, block: f64) -> Mask {
+fn chart_mask(
+    local: &[DVec2],
+    uv_faces: &[[u32; 3]],
+    faces: &[u32],
+    scale: f64,
+    block: f64,
+    grid: usize,
+) -> Option<Mask> {
     let to_blocks = |k: u32| local[k as usize] * (scale / block);
     let corners: Vec<[DVec2; 3]> = faces.iter().map(|&f| uv_faces[f as usize].map(to_blocks)).collect();
     let extent = corners.iter().flatten().fold(DVec2::ZERO, |m, p| m.max(*p));
+    // Larger than the atlas (or not a number): no mask to build.
+    if !(extent.max_element() < grid as f64) {
+        return None;
+    }
     let mut mask = Mask::new(extent.x as usize + 1, extent.y as usize + 1);
     for tri in &corners {
         let low = tri[0].min(tri[1]).min(tri[2]).max(DVec2::ZERO).floor();
@@ -222,7 +240,7 @@ fn chart_mask(local: &[DVec2], uv_faces: &[[u32; 3]], faces: &[u32], scale: f64,
             }
         }
     }
-    mask
+    Some(mask)
 }
 
 /// Whether a triangle meets the unit square at `corner` (boundaries included).
@@ -253,11 +271,8 @@ fn place(
     let masks: Vec<Mask> = chart_faces
         .par_iter()
         .zip(sizes)
-        .map(|(faces, &size)| chart_mask(local, uv_faces, faces, chart_scale(size, scale), block))
-        .collect();
-    if masks.iter().any(|m| m.width > grid || m.height > grid) {
-        return None;
-    }
+        .map(|(faces, &size)| chart_mask(local, uv_faces, faces, chart_scale(size, scale), block, grid))
+        .collect::<Option<_>>()?;
     let mut order: Vec<usize> = (0..masks.len()).collect();
     order.sort_by_key(|&c| (std::cmp::Reverse(masks[c].width * masks[c].height), c));
     // The occupancy has a free ring one block wide around the atlas, where dilated masks may hang.

@@ -157,3 +157,18 @@ fn bad_options_and_meshes_name_the_problem() {
     ));
     assert!(matches!(unwrap(&[], &[], &options), Err(UvfeatError::EmptyMesh { .. })));
 }
+
+#[test]
+fn huge_coordinates_and_faces_without_area_still_unwrap() {
+    let sphere = uv_sphere(1.0, 16, 8);
+    let huge: Vec<[f64; 3]> = sphere.positions.iter().map(|p| p.map(|c| c * 1e300)).collect();
+    let options = UnwrapOptions::default();
+    let (small, large) =
+        (unwrap(&sphere.positions, &sphere.faces, &options).unwrap(), unwrap(&huge, &sphere.faces, &options).unwrap());
+    assert_eq!(small.n_charts, large.n_charts);
+    assert!(large.uvs.iter().all(|uv| uv.is_finite() && uv.min_element() >= 0.0 && uv.max_element() <= 1.0));
+    // Every face collapsed to a point or a segment: nothing to chart but nothing to fail on either.
+    let flat: Vec<[f64; 3]> = sphere.positions.iter().map(|p| [p[0], 0.0, 0.0]).collect();
+    let collapsed = unwrap(&flat, &sphere.faces, &options).unwrap();
+    assert!(collapsed.uvs.iter().all(|uv| uv.is_finite()));
+}
