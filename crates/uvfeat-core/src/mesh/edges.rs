@@ -46,6 +46,23 @@ pub(crate) struct EdgeClasses {
     pub counts: EdgeCounts,
 }
 
+/// Every half-edge `(k, k + 1)` of every face as `(key, 3 f + k)`, sorted: the key is the edge's
+/// two vertices, lower first, so the half-edges of one edge come together.
+pub(crate) fn sorted_half_edges(faces: &[[u32; 3]]) -> Vec<(u64, u32)> {
+    let mut keyed: Vec<(u64, u32)> = faces
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(f, t)| {
+            (0..3).map(move |k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), (3 * f + k) as u32)
+            })
+        })
+        .collect();
+    keyed.par_sort_unstable();
+    keyed
+}
+
 /// Classifies the edges of `faces` (geometric vertex ids), skipping `degenerate` faces.
 ///
 /// Two faces are UV-continuous across an edge when both endpoints carry the same UV (compared

@@ -15,6 +15,7 @@ mod weld;
 
 pub use adjacency::{EdgeLink, WalkFace};
 pub use corners::NO_CORNER;
+pub(crate) use edges::sorted_half_edges;
 pub use edges::{EdgeCounts, SideKind};
 pub use jacobian::Jacobian;
 pub use normals::vertex_normals;

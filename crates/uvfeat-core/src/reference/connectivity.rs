@@ -2,9 +2,8 @@
 //! topology and, as in the paper, left out of the reference timings).
 
 use crate::error::{Result, UvfeatError};
-use crate::mesh::weld_positions;
+use crate::mesh::{sorted_half_edges, weld_positions};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Marks a half-edge without a twin (mesh border or non-manifold edge).
 pub const NO_TWIN: u32 = u32::MAX;
@@ -84,17 +83,7 @@ impl Connectivity {
 
 /// Twins of every half-edge, border flags, and the distinct edges as `(low, high)` vertex pairs.
 fn twins(faces: &[[u32; 3]], n_vertices: usize) -> (Vec<u32>, Vec<bool>, Vec<(u32, u32)>) {
-    let mut keyed: Vec<(u64, u32)> = faces
-        .par_iter()
-        .enumerate()
-        .flat_map_iter(|(f, t)| {
-            (0..3).map(move |k| {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), (3 * f + k) as u32)
-            })
-        })
-        .collect();
-    keyed.par_sort_unstable();
+    let keyed = sorted_half_edges(faces);
     let mut twin = vec![NO_TWIN; 3 * faces.len()];
     let mut boundary = vec![false; n_vertices];
     let mut edges = Vec::with_capacity(keyed.len() / 2 + 1);

@@ -12,7 +12,7 @@ mod segment;
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
-use crate::mesh::{checked_indices, checked_positions, weld_positions};
+use crate::mesh::{checked_indices, checked_positions, sorted_half_edges, weld_positions};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use segment::{FaceGraph, NO_FACE};
@@ -138,17 +138,7 @@ fn unit_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
 /// The face across each edge `(k, k + 1)` of every face, [`NO_FACE`] on borders, non-manifold
 /// edges and between faces of opposite orientation (which no chart may join: one would be mirrored).
 fn face_neighbours(faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
-    let mut sides: Vec<(u64, u32)> = faces
-        .par_iter()
-        .enumerate()
-        .flat_map_iter(|(f, t)| {
-            (0..3).map(move |k| {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), (f as u32) * 3 + k as u32)
-            })
-        })
-        .collect();
-    sides.par_sort_unstable();
+    let sides = sorted_half_edges(faces);
     let mut neighbours = vec![[NO_FACE; 3]; faces.len()];
     for group in sides.chunk_by(|x, y| x.0 == y.0) {
         if let [(_, x), (_, y)] = group {

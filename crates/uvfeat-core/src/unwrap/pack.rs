@@ -210,8 +210,9 @@ impl Mask {
     }
 }
 
-/// The blocks of a chart at `scale` (`None` when it spans more than `grid` blocks): every block its triangles may touch (their bounding boxes,
-/// refined by a separating-axis test for triangles wider than a block).
+/// The blocks of a chart at `scale`, `None` when it spans more than `grid` blocks: every block its
+/// triangles may touch (their bounding boxes, refined by a separating-axis test for triangles
+/// wider than a block).
 fn chart_mask(
     local: &[DVec2],
     uv_faces: &[[u32; 3]],
