@@ -56,6 +56,18 @@ def client():
         yield client
 
 
+def test_local_workers_keep_the_engine_threads_and_glibcs_own_memory_tuning(client):
+    """Dask's nannies set MALLOC_TRIM_THRESHOLD_, which fixes glibc's mmap threshold and made a
+    worker 22 % slower per mesh than one process (docs/BENCHMARKS.md); local workers go without."""
+    import os
+
+    environments = client.run(lambda: {k: os.environ.get(k) for k in ("MALLOC_TRIM_THRESHOLD_", "RAYON_NUM_THREADS")})
+    assert len(environments) == 2
+    for environment in environments.values():
+        assert environment["MALLOC_TRIM_THRESHOLD_"] is None
+        assert int(environment["RAYON_NUM_THREADS"]) >= 1
+
+
 def assert_same_files(computed: pathlib.Path, serial: pathlib.Path) -> None:
     numeric = sorted(p.name for p in serial.iterdir() if p.suffix in (".npz", ".npy"))
     assert numeric and numeric == sorted(p.name for p in computed.iterdir() if p.suffix in (".npz", ".npy"))

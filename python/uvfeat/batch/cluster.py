@@ -53,11 +53,19 @@ def check_workers(workers: int | None) -> int:
 
 def local_cluster(workers: int | None = None, dashboard_address: str | None = "127.0.0.1:8787"):
     """A ``LocalCluster`` of ``workers`` processes (default: one per core) with one thread each,
-    on the loopback interface."""
+    on the loopback interface.
+
+    Its workers keep glibc's own memory tuning: Dask's nannies set ``MALLOC_TRIM_THRESHOLD_``,
+    which also fixes glibc's mmap threshold at 128 KiB, so every array of a mesh was mapped and
+    unmapped afresh; that made a worker 22 % slower per mesh than the same work in one process
+    (docs/BENCHMARKS.md). Freed memory is still reused for the next mesh."""
+    import dask
+
     workers = check_workers(workers)
-    return distributed().LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                      dashboard_address=dashboard_address,
-                                      env={"RAYON_NUM_THREADS": str(engine_threads(workers))})
+    with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+        return distributed().LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                          dashboard_address=dashboard_address,
+                                          env={"RAYON_NUM_THREADS": str(engine_threads(workers))})
 
 
 @contextlib.contextmanager
