@@ -36,7 +36,7 @@ def skinned_torus(path: str, n_joints: int = 8) -> str:
     """A 102,400-triangle torus on ``n_joints`` joints spaced around its ring; each vertex follows
     the two nearest joints, blended by angle, and each joint tilts by up to 20 degrees."""
     torus = uvfeat.shapes.torus(2.0, 0.5, 320, 160)
-    mesh = uvfeat.Mesh(torus.positions, torus.faces, name="torus").with_atlas()
+    mesh = uvfeat.Mesh(torus.positions, torus.faces, name="torus").with_atlas(method="xatlas")
     positions, faces, uvs = per_vertex_uvs(mesh)
     step = 2 * np.pi / n_joints
     slot = np.arctan2(positions[:, 1], positions[:, 0]) % (2 * np.pi) / step

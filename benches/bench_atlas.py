@@ -60,12 +60,12 @@ def main() -> None:
         meshes = [uvfeat.load(p) for p in args.mesh]
     else:
         torus = uvfeat.shapes.torus(2.0, 0.5, 320, 160)
-        meshes = [torus, uvfeat.Mesh(torus.positions, torus.faces, name="torus (xatlas)").with_atlas()]
+        meshes = [torus, uvfeat.Mesh(torus.positions, torus.faces, name="torus (xatlas)").with_atlas(method="xatlas")]
         dragon = pathlib.Path(__file__).resolve().parents[2] / "shared" / "meshes" / "dragon.obj"
         if dragon.exists():
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                meshes.append(uvfeat.load(dragon))
+                meshes.append(uvfeat.load(dragon, uv="xatlas"))
     threads = os.environ.get("RAYON_NUM_THREADS", str(os.cpu_count()))
     print(f"buffer generation at {args.resolution}², {threads} threads, median of {args.repeat} frames")
     print(f"{'mesh':<22}{'faces':>8}{'charts':>8}{'pre-proc ms':>13}{'raster ms':>11}{'frame ms':>10}{'min ms':>8}")

@@ -32,7 +32,7 @@ def benchmark_mesh(path: str | None) -> uvfeat.Mesh:
         if path:
             return uvfeat.load(path)
         torus = uvfeat.shapes.torus(2.0, 0.5, 320, 160)
-        return uvfeat.Mesh(torus.positions, torus.faces, name="torus 102K (xatlas)").with_atlas()
+        return uvfeat.Mesh(torus.positions, torus.faces, name="torus 102K (xatlas)").with_atlas(method="xatlas")
 
 
 def main() -> None:

@@ -37,7 +37,7 @@ def tori() -> list[uvfeat.Mesh]:
     single = uvfeat.Mesh(t.positions, t.faces, uvs=t.uvs, uv_faces=t.uv_faces, name="torus 102K, lat-long")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        multi = uvfeat.Mesh(t.positions, t.faces, name="torus 102K, xatlas").with_atlas()
+        multi = uvfeat.Mesh(t.positions, t.faces, name="torus 102K, xatlas").with_atlas(method="xatlas")
     return [single, multi]
 
 
