@@ -27,7 +27,7 @@ CORRUPT = {"nan.obj": "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
 
 @pytest.fixture(scope="module")
 def meshes(tmp_path_factory) -> pathlib.Path:
-    """18 small tori of different shapes (PLY without UVs: xatlas) and 2 corrupt files."""
+    """18 small tori of different shapes (PLY without UVs: an automatic atlas) and 2 corrupt files."""
     folder = tmp_path_factory.mktemp("meshes")
     for k in range(18):
         torus = uvfeat.shapes.torus(2.0, 0.4 + 0.05 * (k % 6), 32 + 4 * (k // 6), 16)
