@@ -102,6 +102,15 @@ def fit_gutters(texture: np.ndarray, uvs: np.ndarray, values: np.ndarray, smooth
     rhs = np.concatenate([values[rows] - known, smoothness * prior])
     solution = linalg.lsqr(system, rhs, atol=1e-12, btol=1e-12, iter_lim=20 * len(unknown))[0]
     out = flat.copy()
+    # Within the charts' range widened by twice it on each side: renormalised footprints need some
+    # extrapolation (Spot's seams need more than half the range beyond it), but a corner that
+    # weighs an empty texel little (its footprint mostly on another chart's texels) could push it
+    # ten ranges out, and the texture's range with it.
+    finite = flat[np.isfinite(flat)]
+    if finite.size:
+        low, high = float(finite.min()), float(finite.max())
+        margin = 2.0 * (high - low)
+        solution = np.clip(solution, low - margin, high + margin)
     out[unknown] = solution
     return out.reshape(texture.shape).astype(texture.dtype)
 

@@ -44,7 +44,8 @@ impl ScreenTriangle {
             return None;
         }
         let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-        if area == 0.0 {
+        // Without area, or so large that the weights would not be numbers: nothing to draw.
+        if area == 0.0 || !area.is_finite() {
             return None;
         }
         let inverse = 1.0 / area;

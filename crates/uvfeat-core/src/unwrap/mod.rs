@@ -136,12 +136,16 @@ fn unit_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
 }
 
 /// The face across each edge `(k, k + 1)` of every face, [`NO_FACE`] on borders, non-manifold
-/// edges and between faces of opposite orientation (which no chart may join: one would be mirrored).
+/// edges, between faces of opposite orientation (which no chart may join: one would be mirrored)
+/// and next to faces whose corners weld together.
 fn face_neighbours(faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
     let sides = sorted_half_edges(faces);
     let mut neighbours = vec![[NO_FACE; 3]; faces.len()];
     for group in sides.chunk_by(|x, y| x.0 == y.0) {
-        if let [(_, x), (_, y)] = group {
+        // A face with a collapsed corner is no one's neighbour (nor does it hide one).
+        let live: Vec<u32> =
+            group.iter().map(|&(_, h)| h).filter(|h| !segment::collapsed(faces[*h as usize / 3])).collect();
+        if let [x, y] = live[..] {
             let ((fx, kx), (fy, ky)) = ((x / 3, x % 3), (y / 3, y % 3));
             // Consistently oriented neighbours run along their shared edge in opposite directions.
             if faces[fx as usize][kx as usize] == faces[fy as usize][(ky as usize + 1) % 3] {

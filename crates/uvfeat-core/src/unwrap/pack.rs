@@ -18,8 +18,12 @@ const SMALL_BOX_BLOCKS: usize = 16;
 /// cover less surface than elsewhere, which each face's metric accounts for.
 const MIN_CHART_TEXELS: f64 = 3.0;
 
-/// An enlarged chart's long side grows to at most this many texels (slivers stay small).
+/// An enlarged chart's long side grows to at most this many texels (slivers stay small) ...
 const MAX_ENLARGED_TEXELS: f64 = 48.0;
+
+/// ... and its scale to at most this multiple of the atlas's, so that every chart still shrinks
+/// with the atlas's scale while the packing searches for one that fits.
+const MAX_ENLARGEMENT: f64 = 64.0;
 
 /// The scale of a chart of `size` (object units) when the atlas's scale is `scale`.
 fn chart_scale(size: DVec2, scale: f64) -> f64 {
@@ -27,7 +31,7 @@ fn chart_scale(size: DVec2, scale: f64) -> f64 {
     if narrow >= MIN_CHART_TEXELS || long == 0.0 {
         return scale;
     }
-    scale * (MIN_CHART_TEXELS / narrow).min(MAX_ENLARGED_TEXELS / long).max(1.0)
+    scale * (MIN_CHART_TEXELS / narrow).min(MAX_ENLARGED_TEXELS / long).clamp(1.0, MAX_ENLARGEMENT)
 }
 
 /// Moves `uvs` (object units, per chart) into `[0, 1]^2`.

@@ -75,19 +75,41 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
         let seed = match seeds.pop_front() {
             Some(f) if face_chart[f as usize] == u32::MAX => f,
             Some(_) => continue,
-            None => match (next_unscanned..n_faces).find(|&f| face_chart[f] == u32::MAX) {
-                Some(f) => {
-                    next_unscanned = f + 1;
-                    f as u32
+            None => {
+                match (next_unscanned..n_faces).find(|&f| face_chart[f] == u32::MAX && !collapsed(graph.faces[f])) {
+                    Some(f) => {
+                        next_unscanned = f + 1;
+                        f as u32
+                    }
+                    None => break,
                 }
-                None => break,
-            },
+            }
         };
         let chart = charts.n_charts as u32;
         growth.grow(graph, seed, chart, cone, &mut face_chart, &mut charts, &mut seeds);
         charts.n_charts += 1;
     }
+    // A face whose corners weld together has no edges to grow along and no area to chart: its
+    // corners take the UVs their vertices have (the UV triangle is degenerate, and the topology
+    // leaves it out, as it leaves the face out in 3D).
+    for (f, corners) in graph.faces.iter().enumerate().filter(|(_, t)| collapsed(**t)) {
+        let known =
+            corners.map(|v| (growth.vertex_chart[v as usize] != u32::MAX).then(|| growth.vertex_uv[v as usize]));
+        let any = known.iter().flatten().next().copied().unwrap_or_else(|| {
+            // No corner has a UV (all the faces around collapsed too): a point in a chart of its own.
+            charts.uvs.push(DVec2::ZERO);
+            charts.uv_chart.push(charts.n_charts as u32);
+            charts.n_charts += 1;
+            charts.uvs.len() as u32 - 1
+        });
+        charts.uv_faces[f] = known.map(|uv| uv.unwrap_or(any));
+    }
     charts
+}
+
+/// Whether two corners of a face are one welded vertex.
+pub(super) fn collapsed(t: [u32; 3]) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
 }
 
 /// The reusable state of one chart's growth.
@@ -98,7 +120,11 @@ struct Growth {
     /// (n_faces) the chart that last looked at the face, so each chart weighs a face once.
     face_seen: Vec<u32>,
     heap: BinaryHeap<Reverse<(u64, u32)>>,
+    /// The overlap guard: the chart's faces by grid cell, its faces too large for the grid, and
+    /// all its faces.
     grid: HashMap<(i32, i32), Vec<u32>, BuildHasherDefault<CellHasher>>,
+    large: Vec<u32>,
+    held: Vec<u32>,
     cell: f64,
 }
 
@@ -110,6 +136,8 @@ impl Growth {
             face_seen: vec![u32::MAX; n_faces],
             heap: BinaryHeap::new(),
             grid: HashMap::default(),
+            large: Vec::new(),
+            held: Vec::new(),
             cell,
         }
     }
@@ -132,6 +160,8 @@ impl Growth {
         let origin = graph.centroids[seed as usize];
         let project = |p: DVec3| DVec2::new((p - origin).dot(t1), (p - origin).dot(t2));
         self.grid.clear();
+        self.large.clear();
+        self.held.clear();
         self.face_seen[seed as usize] = chart;
         self.heap.push(Reverse((0, seed)));
         while let Some(Reverse((_, f))) = self.heap.pop() {
@@ -177,43 +207,54 @@ impl Growth {
         }
     }
 
-    fn cells(&self, corners: &[DVec2; 3]) -> impl Iterator<Item = (i32, i32)> {
-        let low = corners[0].min(corners[1]).min(corners[2]) / self.cell;
-        let high = corners[0].max(corners[1]).max(corners[2]) / self.cell;
-        let (x0, y0, x1, y1) =
-            (low.x.floor() as i32, low.y.floor() as i32, high.x.floor() as i32, high.y.floor() as i32);
-        (x0..=x1).flat_map(move |x| (y0..=y1).map(move |y| (x, y)))
+    /// The grid cells `(x0, y0, x1, y1)` a triangle's box covers, `None` when it spans more than
+    /// [`MAX_CELL_SPAN`] on an axis (or is not finite).
+    fn cell_span(&self, corners: &[DVec2; 3]) -> Option<(i32, i32, i32, i32)> {
+        let low = (corners[0].min(corners[1]).min(corners[2]) / self.cell).floor();
+        let high = (corners[0].max(corners[1]).max(corners[2]) / self.cell).floor();
+        let span = high - low;
+        (span.max_element() <= MAX_CELL_SPAN).then(|| (low.x as i32, low.y as i32, high.x as i32, high.y as i32))
     }
 
     /// Whether face `f` (projected to `corners`) overlaps a face the chart holds. An edge
     /// neighbour cannot: both turn the same way, so they lie on either side of their shared edge.
     fn overlaps(&self, graph: &FaceGraph, f: u32, corners: &[DVec2; 3], charts: &Charts) -> bool {
         let (low, high) = (corners[0].min(corners[1]).min(corners[2]), corners[0].max(corners[1]).max(corners[2]));
-        let vertices = graph.faces[f as usize];
-        self.cells(corners).any(|cell| {
-            self.grid.get(&cell).is_some_and(|held| {
-                held.iter().any(|&g| {
-                    let other = charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize]);
-                    let (other_low, other_high) =
-                        (other[0].min(other[1]).min(other[2]), other[0].max(other[1]).max(other[2]));
-                    let apart = other_low.cmpge(high).any() || low.cmpge(other_high).any();
-                    let shared = graph.faces[g as usize].iter().filter(|v| vertices.contains(v)).count();
-                    !apart && shared < 2 && interiors_overlap(corners, &other)
-                })
-            })
-        })
+        let overlapping = |&g: &u32| {
+            let other = charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize]);
+            let (other_low, other_high) = (other[0].min(other[1]).min(other[2]), other[0].max(other[1]).max(other[2]));
+            let apart = other_low.cmpge(high).any() || low.cmpge(other_high).any();
+            !apart && !graph.neighbours[f as usize].contains(&g) && interiors_overlap(corners, &other)
+        };
+        match self.cell_span(corners) {
+            Some((x0, y0, x1, y1)) => {
+                (x0..=x1)
+                    .any(|x| (y0..=y1).any(|y| self.grid.get(&(x, y)).is_some_and(|held| held.iter().any(overlapping))))
+                    || self.large.iter().any(overlapping)
+            }
+            None => self.held.iter().any(overlapping),
+        }
     }
 
     fn insert(&mut self, f: u32, corners: &[DVec2; 3]) {
-        let low = (corners[0].min(corners[1]).min(corners[2]) / self.cell).floor();
-        let high = (corners[0].max(corners[1]).max(corners[2]) / self.cell).floor();
-        for x in low.x as i32..=high.x as i32 {
-            for y in low.y as i32..=high.y as i32 {
-                self.grid.entry((x, y)).or_default().push(f);
+        self.held.push(f);
+        match self.cell_span(corners) {
+            Some((x0, y0, x1, y1)) => {
+                for x in x0..=x1 {
+                    for y in y0..=y1 {
+                        self.grid.entry((x, y)).or_default().push(f);
+                    }
+                }
             }
+            None => self.large.push(f),
         }
     }
 }
+
+/// Faces whose box spans more grid cells than this on an axis are checked against every face the
+/// chart holds, not through the grid: one large face among small ones (a scan's base plate, a
+/// CAD part's flat side) would fill millions of cells.
+const MAX_CELL_SPAN: f64 = 16.0;
 
 /// A multiplicative hash of grid cells: the guard's cells are small integers, where SipHash's
 /// protection against chosen keys only costs time (it was half of the charts' growth).

@@ -172,3 +172,44 @@ fn huge_coordinates_and_faces_without_area_still_unwrap() {
     let collapsed = unwrap(&flat, &sphere.faces, &options).unwrap();
     assert!(collapsed.uvs.iter().all(|uv| uv.is_finite()));
 }
+
+#[test]
+fn a_large_face_among_small_ones_and_collapsed_faces_stay_cheap() {
+    // A fine grid with a large plate beside it, touching nothing: the plate spans about 10^8 cells
+    // of the overlap guard's grid (mean edge length), which it must not fill.
+    let mut shape = torus(2.0, 0.5, 96, 48);
+    let base = shape.positions.len() as i64;
+    shape.positions.extend([[10.0, 10.0, 0.0], [1010.0, 10.0, 0.0], [10.0, 1010.0, 0.0]]);
+    shape.faces.push([base, base + 1, base + 2]);
+    // Faces whose corners weld together: one inside the torus's grid, one on its own.
+    shape.faces.push([0, 0, 1]);
+    shape.positions.push([0.0, 0.0, 9.0]);
+    let lonely = shape.positions.len() as i64 - 1;
+    shape.faces.push([lonely, lonely, lonely]);
+    let started = std::time::Instant::now();
+    let plain =
+        unwrap(&torus(2.0, 0.5, 96, 48).positions, &torus(2.0, 0.5, 96, 48).faces, &UnwrapOptions::default()).unwrap();
+    let result = unwrap(&shape.positions, &shape.faces, &UnwrapOptions::default()).unwrap();
+    assert!(started.elapsed().as_secs_f64() < 5.0, "took {:?}", started.elapsed());
+    // The plate is one chart more; the collapsed faces take their vertices' UVs (the lonely one a
+    // point of its own), and do not cut the torus's charts.
+    assert_eq!(result.n_charts, plain.n_charts + 2);
+    let f = shape.faces.len() - 2;
+    assert_eq!(result.uv_faces[f][0], result.uv_faces[f][1]);
+}
+
+#[test]
+fn thousands_of_slivers_still_pack() {
+    // Separate sliver triangles (aspect 1000): each is a chart that the packing enlarges, which
+    // must not stop the atlas's scale from shrinking until they fit.
+    let mut shape = ShapeMesh::default();
+    for k in 0..3000 {
+        let (x, y) = ((k % 60) as f64, (k / 60) as f64);
+        let base = shape.positions.len() as i64;
+        shape.positions.extend([[x, y, 0.0], [x + 1.0, y, 0.0], [x + 0.5, y + 0.001, 0.0]]);
+        shape.faces.push([base, base + 1, base + 2]);
+    }
+    let result = unwrap(&shape.positions, &shape.faces, &UnwrapOptions::default()).expect("the slivers pack");
+    assert_eq!(result.n_charts, 3000);
+    assert!(result.uvs.iter().all(|uv| uv.min_element() >= 0.0 && uv.max_element() <= 1.0));
+}
