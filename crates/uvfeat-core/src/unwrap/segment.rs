@@ -213,7 +213,7 @@ impl Growth {
         let low = (corners[0].min(corners[1]).min(corners[2]) / self.cell).floor();
         let high = (corners[0].max(corners[1]).max(corners[2]) / self.cell).floor();
         let span = high - low;
-        (span.max_element() <= MAX_CELL_SPAN).then(|| (low.x as i32, low.y as i32, high.x as i32, high.y as i32))
+        (span.max_element() <= MAX_CELL_SPAN).then_some((low.x as i32, low.y as i32, high.x as i32, high.y as i32))
     }
 
     /// Whether face `f` (projected to `corners`) overlaps a face the chart holds. An edge
