@@ -75,11 +75,13 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
     let centroids: Vec<DVec3> =
         welded_faces.par_iter().map(|t| t.iter().map(|&v| welded[v as usize]).sum::<DVec3>() / 3.0).collect();
     let neighbours = face_neighbours(&welded_faces);
+    let smoothed = smoothed_normals(&normals, &neighbours);
     let graph = FaceGraph {
         positions: &welded,
         faces: &welded_faces,
         neighbours: &neighbours,
         normals: &normals,
+        smoothed_normals: &smoothed,
         centroids: &centroids,
         cell: 2.0 * mean_edge_length(&welded, &welded_faces),
     };
@@ -156,6 +158,26 @@ fn face_neighbours(faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
     }
     neighbours
 }
+
+/// Face normals averaged with their edge neighbours' [`SMOOTHING_STEPS`] times: what the cone
+/// test reads, so that noise at the scale of the faces (a scan's, or 0.3 edge lengths of normal
+/// noise: 44,076 charts on a 200K-face torus) does not cut a chart at every face.
+fn smoothed_normals(normals: &[DVec3], neighbours: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut smoothed = normals.to_vec();
+    for _ in 0..SMOOTHING_STEPS {
+        smoothed = (0..normals.len())
+            .into_par_iter()
+            .map(|f| {
+                let around = neighbours[f].iter().filter(|&&g| g != NO_FACE).map(|&g| smoothed[g as usize]);
+                (smoothed[f] + around.sum::<DVec3>()).normalize_or_zero()
+            })
+            .collect();
+    }
+    smoothed
+}
+
+/// Rounds of neighbour averaging in [`smoothed_normals`] (about as many rings of faces).
+const SMOOTHING_STEPS: usize = 4;
 
 fn mean_edge_length(positions: &[DVec3], faces: &[[u32; 3]]) -> f64 {
     let total: f64 = faces

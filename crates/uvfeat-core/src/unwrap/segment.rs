@@ -38,10 +38,15 @@ pub(super) struct FaceGraph<'a> {
     pub neighbours: &'a [[u32; 3]],
     /// (n_faces) unit normal, zero for a face without area.
     pub normals: &'a [DVec3],
+    /// (n_faces) the normals averaged over a few rings of neighbours: what the cone test reads.
+    pub smoothed_normals: &'a [DVec3],
     pub centroids: &'a [DVec3],
     /// Side of the overlap guard's grid cells (object units).
     pub cell: f64,
 }
+
+/// The cosine of the largest angle between a face's own normal and its chart's axis: 85°.
+const COS_FACE_LIMIT: f64 = 0.087_155_742_747_658_17;
 
 /// The cosines of a chart's cone half-angle, for any face and for a notch.
 #[derive(Clone, Copy)]
@@ -153,9 +158,16 @@ impl Growth {
         charts: &mut Charts,
         seeds: &mut VecDeque<u32>,
     ) {
-        // A seed without area (found only when it starts a component) has no normal: the xy plane.
-        let axis = graph.normals[seed as usize];
-        let axis = if axis == DVec3::ZERO { DVec3::Z } else { axis };
+        // The seed's smoothed normal, unless the seed itself does not face it (then its own); a
+        // seed without area (found only when it starts a component) has none: the xy plane.
+        let (own, smoothed) = (graph.normals[seed as usize], graph.smoothed_normals[seed as usize]);
+        let axis = if own == DVec3::ZERO {
+            DVec3::Z
+        } else if own.dot(smoothed) >= COS_FACE_LIMIT {
+            smoothed
+        } else {
+            own
+        };
         let (t1, t2) = axis.any_orthonormal_pair();
         let origin = graph.centroids[seed as usize];
         let project = |p: DVec3| DVec2::new((p - origin).dot(t1), (p - origin).dot(t2));
@@ -171,10 +183,13 @@ impl Growth {
                 .iter()
                 .filter(|&&g| g != NO_FACE && face_chart[g as usize] == chart)
                 .count();
-            let tilt = normal.dot(axis);
+            // The cone test reads the smoothed normal; the face itself must still face the axis,
+            // within 85°, so that it projects the right way round and not into a sliver.
+            let tilt = graph.smoothed_normals[f as usize].dot(axis);
+            let facing = normal.dot(axis) >= COS_FACE_LIMIT;
             // A notch (a face the chart holds on two sides) may tilt further: refusing it would
             // leave it a chart of its own.
-            let in_cone = tilt >= cone.cos_max_angle || (held >= 2 && tilt >= cone.cos_notch_angle);
+            let in_cone = facing && (tilt >= cone.cos_max_angle || (held >= 2 && tilt >= cone.cos_notch_angle));
             // A face without area has no interior to fold over anything: any chart may hold it.
             let fits = f == seed || normal == DVec3::ZERO || (in_cone && !self.overlaps(graph, f, &corners, charts));
             if !fits {

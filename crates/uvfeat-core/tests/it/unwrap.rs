@@ -61,8 +61,8 @@ fn charts_are_injective_within_their_cone_and_share_one_scale() {
     assert_eq!((diagnostics.mirrored_uv_faces, diagnostics.degenerate_uv_faces), (0, 0));
     assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
     // Orthographic projection: UV area / surface area is the shared scale squared times the cosine
-    // between the face and its chart's axis: at least cos 45° of the largest ratio, or cos 75° for
-    // the few notch faces a chart holds on two sides.
+    // between the face and its chart's axis. The cone test reads smoothed normals (45°, 75° for a
+    // notch), so a face's own normal may lean a little further, but never past 85°.
     let ratios: Vec<f64> = (0..mesh.faces.len())
         .map(|f| {
             let (p, uv) = corners(&mesh, f);
@@ -73,8 +73,9 @@ fn charts_are_injective_within_their_cone_and_share_one_scale() {
     let share_over = |angle: f64| {
         ratios.iter().filter(|&&r| r >= largest * angle.to_radians().cos() - 1e-12).count() as f64 / ratios.len() as f64
     };
-    assert_eq!(share_over(75.0), 1.0, "a face tilts more than a notch may");
-    assert!(share_over(45.0) > 0.97, "{:.3} of the faces within the cone", share_over(45.0));
+    assert_eq!(share_over(85.0), 1.0, "a face tilts more than any face may");
+    assert!(share_over(75.0) > 0.99, "{:.3} of the faces within the notches' cone", share_over(75.0));
+    assert!(share_over(45.0) > 0.9, "{:.3} of the faces within the cone", share_over(45.0));
     assert!(share_over(20.0) < 0.9, "every face lies flat in its chart: the cone test is not at work");
     let again = unwrap(&mesh.positions, &mesh.faces, &options).expect("unwrap");
     assert_eq!(again.uv_rows(), mesh.uvs, "the unwrap is not deterministic");
@@ -212,4 +213,26 @@ fn thousands_of_slivers_still_pack() {
     let result = unwrap(&shape.positions, &shape.faces, &UnwrapOptions::default()).expect("the slivers pack");
     assert_eq!(result.n_charts, 3000);
     assert!(result.uvs.iter().all(|uv| uv.min_element() >= 0.0 && uv.max_element() <= 1.0));
+}
+
+#[test]
+fn noise_at_the_scale_of_the_faces_does_not_cut_a_chart_at_every_face() {
+    const AMPLITUDE: f64 = 0.03;
+    // A torus whose vertices move along their normals by up to 0.6 of the tube's edge length,
+    // pseudo-randomly (as a scan's noise): the face normals scatter by tens of degrees; the
+    // smoothed normals the cone test reads do not.
+    let mut shape = torus(2.0, 0.5, 128, 64);
+    for (k, p) in shape.positions.iter_mut().enumerate() {
+        let hash = (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40;
+        let offset = AMPLITUDE * (2.0 * hash as f64 / (1u64 << 24) as f64 - 1.0);
+        let point = DVec3::from_array(*p);
+        let ring = DVec3::new(point.x, point.y, 0.0).normalize() * 2.0;
+        *p = (point + (point - ring).normalize() * offset).to_array();
+    }
+    let (mesh, n_charts) = unwrapped(&shape, &UnwrapOptions::default());
+    // Measured: 63 charts; 262 when the cone test read the faces' own normals.
+    assert!(n_charts < 130, "{n_charts} charts for {} faces", mesh.faces.len());
+    let atlas = atlas(&mesh, 1024);
+    assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
+    assert_eq!(atlas.topology.diagnostics.mirrored_uv_faces, 0);
 }
