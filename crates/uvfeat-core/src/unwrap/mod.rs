@@ -1,11 +1,11 @@
-//! Stage 0 of the pipeline (DESIGN.md §1.1.1): an automatic UV atlas for a mesh that has none.
+//! An automatic UV atlas for a mesh that has none (DESIGN.md §1.1.1), beside the mesh stage.
 //!
 //! The parametric features need of an atlas only that each chart is injective and its distortion
 //! bounded: every face's metric tensor (§1.3) undoes the parametrisation's stretch. Charts whose
-//! normals lie within a cone of half-angle θ, projected orthographically onto the plane across the
-//! cone's axis, are exactly that (stretch at most `1 / cos θ`, injectivity checked as they grow),
-//! and they take milliseconds where an optimising unwrapper (xatlas: about 20 s for 100K faces on
-//! two cores) takes seconds per ten thousand faces.
+//! (smoothed) normals lie within a cone of half-angle θ, projected orthographically onto the plane
+//! across the cone's axis, are exactly that (stretch about `1 / cos θ`, injectivity checked as
+//! they grow), and they take a fraction of a second where an optimising unwrapper (xatlas: about
+//! 20 s for 100K faces on two cores) takes seconds per ten thousand faces.
 
 mod pack;
 mod segment;

@@ -3,8 +3,9 @@
 //!
 //! A chart grows from a seed face in order of distance from the seed (so charts come out round)
 //! and takes a face only when
-//! - its normal lies within the cone of half-angle θ around the seed's normal, so the orthographic
-//!   projection keeps the face's orientation and stretches it by at most `1 / cos θ`, and
+//! - its smoothed normal lies within the cone of half-angle θ around the seed's (the chart's axis)
+//!   and its own normal within 85° of the axis, so the orthographic projection keeps the face's
+//!   orientation and stretches it by about `1 / cos θ`, and
 //! - its projected triangle does not overlap any face the chart already holds, so the chart's
 //!   parametrisation is injective even where the surface winds over itself (a spiral ramp).
 //!
