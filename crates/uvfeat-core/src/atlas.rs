@@ -133,8 +133,7 @@ impl Atlas {
 
     /// Centre of texel `t` in parametric coordinates.
     pub fn texel_centre(&self, t: usize) -> DVec2 {
-        let r = self.resolution();
-        DVec2::new(((t % r) as f64 + 0.5) / r as f64, ((t / r) as f64 + 0.5) / r as f64)
+        self.coverage.texel_centre(t)
     }
 }
 

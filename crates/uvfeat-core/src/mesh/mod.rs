@@ -115,6 +115,11 @@ pub(crate) fn checked_indices(rows: &[[i64; 3]], count: usize, what: &'static st
         .collect()
 }
 
+/// Whether two corners of a face are one (welded) vertex: the face has no area and no third edge.
+pub(crate) fn has_repeated_corner(t: [u32; 3]) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
+}
+
 /// Barycentric coordinates of `p` in the UV triangle `uv` (negative outside it).
 pub(crate) fn uv_barycentric(uv: &[DVec2; 3], p: DVec2) -> [f64; 3] {
     let area2 = uv_signed_area2(uv);

@@ -7,7 +7,7 @@ use super::corners::corner_groups;
 use super::edges::{classify_edges, uv_of_vertex, EdgeCounts};
 use super::sides::{boundary_sides, BoundarySide};
 use super::weld::weld_positions;
-use super::{uv_is_degenerate, uv_signed_area2, TriangleMesh};
+use super::{has_repeated_corner, uv_is_degenerate, uv_signed_area2, TriangleMesh};
 use crate::error::{Result, UvfeatError};
 use glam::{DVec2, DVec3};
 
@@ -71,11 +71,8 @@ impl Topology {
         let faces: Vec<[u32; 3]> = mesh.faces.iter().map(|t| t.map(|v| vertex_ids[v as usize])).collect();
         let corner_uvs: Vec<[DVec2; 3]> = (0..faces.len()).map(|f| mesh.corner_uvs(f)).collect();
         // A face whose corners weld together is degenerate in 3D and in the edge graph alike.
-        let excluded: Vec<bool> = faces
-            .iter()
-            .zip(&corner_uvs)
-            .map(|(t, uv)| uv_is_degenerate(uv) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-            .collect();
+        let excluded: Vec<bool> =
+            faces.iter().zip(&corner_uvs).map(|(t, uv)| uv_is_degenerate(uv) || has_repeated_corner(*t)).collect();
         let degenerate_uv_faces = excluded.iter().filter(|&&x| x).count();
         if degenerate_uv_faces == faces.len() {
             return Err(UvfeatError::AllUvDegenerate { faces: faces.len() });

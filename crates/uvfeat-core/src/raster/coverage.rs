@@ -5,7 +5,7 @@
 use super::blocked::Blocked;
 use super::boundary::{closest_on_segment, rasterise_edge, EdgeHit};
 use super::triangles::{rasterise_triangle, TriangleHit};
-use crate::mesh::Topology;
+use crate::mesh::{uv_barycentric, Topology};
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -86,15 +86,9 @@ impl Coverage {
     /// not stored: 8 bytes per texel were 32 MiB at 2048².
     pub fn anchor(&self, topology: &Topology, t: usize) -> Option<(u32, DVec2)> {
         let face = u32::try_from(self.face[t]).ok()?;
-        let r = self.resolution as f64;
-        let centre = DVec2::new(((t % self.resolution) as f64 + 0.5) / r, ((t / self.resolution) as f64 + 0.5) / r);
-        let side = usize::try_from(self.border_side[t]).ok();
-        let inside = || {
-            let uv = topology.corner_uvs(face as usize);
-            let area = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]);
-            (0..3).all(|k| (uv[(k + 1) % 3] - uv[k]).perp_dot(centre - uv[k]) * area.signum() >= -1e-12 * area.abs())
-        };
-        match side {
+        let centre = self.texel_centre(t);
+        let inside = || uv_barycentric(&topology.corner_uvs(face as usize), centre).iter().all(|&b| b >= -1e-12);
+        match usize::try_from(self.border_side[t]).ok() {
             Some(side) if !inside() => {
                 let (_, [a, b]) = topology.side_endpoints(&topology.sides[side]);
                 let (_, along) = closest_on_segment(a, b, centre);
@@ -102,6 +96,12 @@ impl Coverage {
             }
             _ => Some((face, centre)),
         }
+    }
+
+    /// Centre of texel `t` in parametric coordinates.
+    pub fn texel_centre(&self, t: usize) -> DVec2 {
+        let r = self.resolution as f64;
+        DVec2::new(((t % self.resolution) as f64 + 0.5) / r, ((t / self.resolution) as f64 + 0.5) / r)
     }
 
     fn rasterise_triangles(&mut self, topology: &Topology) {

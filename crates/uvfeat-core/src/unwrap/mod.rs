@@ -12,7 +12,7 @@ mod segment;
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
-use crate::mesh::{checked_indices, checked_positions, sorted_half_edges, weld_positions};
+use crate::mesh::{checked_indices, checked_positions, has_repeated_corner, sorted_half_edges, weld_positions};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use segment::{FaceGraph, NO_FACE};
@@ -144,10 +144,9 @@ fn face_neighbours(faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
     let sides = sorted_half_edges(faces);
     let mut neighbours = vec![[NO_FACE; 3]; faces.len()];
     for group in sides.chunk_by(|x, y| x.0 == y.0) {
-        // A face with a collapsed corner is no one's neighbour (nor does it hide one).
-        let live: Vec<u32> =
-            group.iter().map(|&(_, h)| h).filter(|h| !segment::collapsed(faces[*h as usize / 3])).collect();
-        if let [x, y] = live[..] {
+        // A face with a repeated corner is no one's neighbour (nor does it hide one).
+        let mut live = group.iter().map(|&(_, h)| h).filter(|h| !has_repeated_corner(faces[*h as usize / 3]));
+        if let (Some(x), Some(y), None) = (live.next(), live.next(), live.next()) {
             let ((fx, kx), (fy, ky)) = ((x / 3, x % 3), (y / 3, y % 3));
             // Consistently oriented neighbours run along their shared edge in opposite directions.
             if faces[fx as usize][kx as usize] == faces[fy as usize][(ky as usize + 1) % 3] {

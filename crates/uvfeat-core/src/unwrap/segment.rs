@@ -11,6 +11,7 @@
 //!
 //! A face refused by one chart seeds a later one: charts tile the surface front by front.
 
+use crate::mesh::has_repeated_corner;
 use glam::{DVec2, DVec3};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap, VecDeque};
@@ -82,7 +83,9 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
             Some(f) if face_chart[f as usize] == u32::MAX => f,
             Some(_) => continue,
             None => {
-                match (next_unscanned..n_faces).find(|&f| face_chart[f] == u32::MAX && !collapsed(graph.faces[f])) {
+                match (next_unscanned..n_faces)
+                    .find(|&f| face_chart[f] == u32::MAX && !has_repeated_corner(graph.faces[f]))
+                {
                     Some(f) => {
                         next_unscanned = f + 1;
                         f as u32
@@ -98,7 +101,7 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
     // A face whose corners weld together has no edges to grow along and no area to chart: its
     // corners take the UVs their vertices have (the UV triangle is degenerate, and the topology
     // leaves it out, as it leaves the face out in 3D).
-    for (f, corners) in graph.faces.iter().enumerate().filter(|(_, t)| collapsed(**t)) {
+    for (f, corners) in graph.faces.iter().enumerate().filter(|(_, t)| has_repeated_corner(**t)) {
         let known =
             corners.map(|v| (growth.vertex_chart[v as usize] != u32::MAX).then(|| growth.vertex_uv[v as usize]));
         let any = known.iter().flatten().next().copied().unwrap_or_else(|| {
@@ -111,11 +114,6 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
         charts.uv_faces[f] = known.map(|uv| uv.unwrap_or(any));
     }
     charts
-}
-
-/// Whether two corners of a face are one welded vertex.
-pub(super) fn collapsed(t: [u32; 3]) -> bool {
-    t[0] == t[1] || t[1] == t[2] || t[0] == t[2]
 }
 
 /// The reusable state of one chart's growth.
