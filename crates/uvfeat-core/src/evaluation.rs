@@ -7,7 +7,8 @@ use crate::features::{
     QuadricFit,
 };
 use crate::sampling::{
-    centre_at, disk_pattern, gather, gather_covering, Centre, Placement, Sample, SampleCounts, TURNS,
+    centre_at, disk_pattern, gather, gather_covering, gather_surfels, Centre, Placement, Quadrature, Sample,
+    SampleCounts, TURNS,
 };
 use crate::settings::ComputeSettings;
 use glam::DVec2;
@@ -109,6 +110,13 @@ pub fn evaluate_point(
     let sampler = settings.sampler();
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
+    if settings.quadrature == Quadrature::Surfels {
+        scratch.clear();
+        let counts = gather_surfels(atlas, &centre, &sampler, scratch);
+        let mut stats = NeighbourhoodStats::default();
+        stats.accumulate(scratch, centre.normal, &stats_settings);
+        return fitted_result(&stats, fit_if_asked(settings, &centre, scratch), counts, settings);
+    }
     let first = patterns.first.len();
     let (mut counts, reach) =
         gather_covering(atlas, &centre, &patterns.first, placement, &sampler, settings.grow_margin, scratch);
@@ -147,17 +155,28 @@ pub fn evaluate_point(
         Some(fit) if !second_stage => fit,
         _ => fit_if_asked(settings, &centre, scratch),
     };
-    let mut result = PixelResult::estimated(&stats, fit.as_ref(), counts, settings);
+    let mut result = fitted_result(&stats, fit, counts, settings);
     result.second_stage = second_stage;
-    if let Some(fit) = fit {
-        result.directions = [fit.d1, fit.d2].map(|d| d.as_vec3().to_array());
-        result.residual = fit.residual as f32;
-    }
     if settings.standard_errors {
         result.errors = batch_standard_errors(scratch, &centre, settings, second_stage, first);
         if let Some(fit) = fit {
             result.errors = with_fit_errors(result.errors, &fit);
         }
+    }
+    result
+}
+
+/// The estimates with the fit's directions and residual (when there is a fit).
+fn fitted_result(
+    stats: &NeighbourhoodStats,
+    fit: Option<QuadricFit>,
+    counts: SampleCounts,
+    settings: &ComputeSettings,
+) -> PixelResult {
+    let mut result = PixelResult::estimated(stats, fit.as_ref(), counts, settings);
+    if let Some(fit) = fit {
+        result.directions = [fit.d1, fit.d2].map(|d| d.as_vec3().to_array());
+        result.residual = fit.residual as f32;
     }
     result
 }

@@ -14,7 +14,7 @@ use crate::features::{lattice_statistics, CurvatureMethod, VolumeWeighting};
 use crate::relocation::{walk, Located};
 use crate::sampling::{
     centre_at, fast_path_applies, grown_reach, Centre, LatticeDomain, LatticeTexel, Overlaps, Placement, Sample,
-    SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
+    Quadrature, SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
 use glam::{DVec2, Vec2};
@@ -31,6 +31,7 @@ pub fn shared_lattice_applies(atlas: &Atlas, settings: &ComputeSettings) -> bool
         && settings.method == CurvatureMethod::Integral
         && settings.volume_weighting == VolumeWeighting::Distance
         && settings.overlaps == Overlaps::Keep
+        && settings.quadrature == Quadrature::Pattern
         && !sampler.with_geodesic
 }
 

@@ -2,7 +2,9 @@
 //! operators `F(p, S(p))` (DESIGN.md §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
 use crate::atlas::Atlas;
-use crate::sampling::{centre_at, disk_pattern, gather_covering, Placement, Sample, SamplerSettings};
+use crate::sampling::{
+    centre_at, disk_pattern, gather_covering, gather_surfels, Placement, Quadrature, Sample, SamplerSettings,
+};
 use crate::settings::ComputeSettings;
 use glam::DVec2;
 use rayon::prelude::*;
@@ -48,11 +50,17 @@ pub fn neighbourhood_tile(
             let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
             let centre = centre_at(atlas, uv, settings.lookup)?;
             let mut samples = Vec::with_capacity(n);
-            let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
-            gather_covering(atlas, &centre, &pattern, placement, &sampler, settings.grow_margin, &mut samples);
+            if settings.quadrature == Quadrature::Surfels {
+                gather_surfels(atlas, &centre, &sampler, &mut samples);
+            } else {
+                let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);
+                gather_covering(atlas, &centre, &pattern, placement, &sampler, settings.grow_margin, &mut samples);
+            }
             Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
         })
         .collect();
+    // Surfel neighbourhoods hold as many samples as the ball has surfels.
+    let n = per_texel.iter().map(|(.., samples)| samples.len()).max().unwrap_or(0).max(n);
     let count = per_texel.len();
     let mut tile = NeighbourhoodTile {
         samples: n,

@@ -5,6 +5,8 @@ mod boundary;
 mod buffers;
 mod coverage;
 mod patches;
+mod surfel_fragments;
+mod surfels;
 mod triangles;
 
 pub use blocked::Blocked;
@@ -12,3 +14,4 @@ pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
 pub use coverage::{Coverage, CoverageDiagnostics};
 pub use patches::{FacePatch, FacePatches};
+pub use surfels::{SurfelLevel, Surfels};

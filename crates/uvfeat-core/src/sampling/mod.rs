@@ -18,6 +18,7 @@ mod reach;
 mod sample;
 mod settings;
 mod sheets;
+mod surfels;
 
 pub use centre::{centre_at, Centre};
 pub use domain_growth::{gather_covering, grown_reach, EDGE_RADIUS, MAX_MARGIN};
@@ -30,4 +31,5 @@ pub use pattern::{
 };
 pub use reach::{Reach, DIRECTIONS};
 pub use sample::{Sample, SampleCounts};
-pub use settings::{Criterion, Overlaps, SamplerSettings, SamplingPath};
+pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
+pub use surfels::{gather_surfels, surfel_level, TARGET_SURFELS};

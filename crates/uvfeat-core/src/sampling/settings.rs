@@ -60,6 +60,19 @@ pub enum Overlaps {
     Drop,
 }
 
+/// How a neighbourhood is summed (DESIGN.md §1.4.8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Quadrature {
+    /// The paper's Monte Carlo pattern over a disk of the centre's parametric plane, carried
+    /// across seams by hinge maps (default).
+    #[default]
+    Pattern,
+    /// The atlas's surfels connected to the centre inside the ball, each counted once with its
+    /// exact area (`sampling/surfels.rs`): no surface counted twice where the development overlaps
+    /// itself, no gaps behind saddles; deterministic, so no adaptive stages or standard errors.
+    Surfels,
+}
+
 /// Which sampler runs: one lattice of samples shared by a tile of texels, the fast path where it
 /// keeps the exact path's answers, or the exact path everywhere (the reference of both).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -5,7 +5,7 @@ use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, SamplerSettings, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,6 +38,8 @@ pub struct ComputeSettings {
     pub sampling: SamplingPath,
     /// Surface reached along two routes through seams: kept (default) or counted once.
     pub overlaps: Overlaps,
+    /// The pattern over the developed parametric disk (default) or the atlas's surfels.
+    pub quadrature: Quadrature,
     /// Seed of the pattern and the per-pixel rotations (0).
     pub seed: u64,
     /// Two-stage adaptive sampling (off).
@@ -75,6 +77,7 @@ impl ComputeSettings {
             geodesic: Geodesic::Arc,
             sampling: SamplingPath::Shared,
             overlaps: Overlaps::Keep,
+            quadrature: Quadrature::Pattern,
             seed: 0,
             adaptive: false,
             tau: 0.01,
@@ -113,6 +116,14 @@ impl ComputeSettings {
         }
         if !(0.0..1.0).contains(&self.rho_min_fraction) {
             return invalid("rho_min", format!("must be a fraction of r in [0, 1), got {}", self.rho_min_fraction));
+        }
+        if self.quadrature == Quadrature::Surfels && (self.adaptive || self.standard_errors) {
+            return invalid(
+                "quadrature",
+                "\"surfels\" sums every surfel of the ball once (no random samples): adaptive sampling and \
+                 standard errors do not apply"
+                    .into(),
+            );
         }
         if !(self.flat_tol >= 0.0) {
             return invalid("flat_tol", format!("must be >= 0, got {}", self.flat_tol));

@@ -8,7 +8,7 @@ use crate::features::{CurvatureMethod, GaussianMethod, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::raster::Precision;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplingPath};
 
 /// An option whose value is one of a few names.
 pub trait Choice: Copy + PartialEq + Sized + 'static {
@@ -64,6 +64,7 @@ crate::choice!(
     [("shared", SamplingPath::Shared), ("fast", SamplingPath::Fast), ("exact", SamplingPath::Exact)]
 );
 crate::choice!(Overlaps, "overlaps", [("keep", Overlaps::Keep), ("drop", Overlaps::Drop)]);
+crate::choice!(Quadrature, "quadrature", [("pattern", Quadrature::Pattern), ("surfels", Quadrature::Surfels)]);
 crate::choice!(
     GaussianMethod,
     "gaussian_method",
@@ -109,6 +110,7 @@ pub fn named_options(settings: &ComputeSettings) -> Vec<(&'static str, OptionVal
         ("geodesic", Text(settings.geodesic.name())),
         ("sampling", Text(settings.sampling.name())),
         ("overlaps", Text(settings.overlaps.name())),
+        ("quadrature", Text(settings.quadrature.name())),
         ("gaussian_method", Text(settings.gaussian_method.name())),
         ("method", Text(settings.method.name())),
         ("volume_weighting", Text(settings.volume_weighting.name())),
@@ -129,6 +131,7 @@ pub fn option_choices() -> Vec<(&'static str, Vec<&'static str>)> {
         (Geodesic::OPTION, Geodesic::names()),
         (SamplingPath::OPTION, SamplingPath::names()),
         (Overlaps::OPTION, Overlaps::names()),
+        (Quadrature::OPTION, Quadrature::names()),
         (GaussianMethod::OPTION, GaussianMethod::names()),
         (CurvatureMethod::OPTION, CurvatureMethod::names()),
         (VolumeWeighting::OPTION, VolumeWeighting::names()),
@@ -204,6 +207,7 @@ impl ComputeSettings {
             "geodesic" => self.geodesic = Choice::named(text()?)?,
             "sampling" => self.sampling = Choice::named(text()?)?,
             "overlaps" => self.overlaps = Choice::named(text()?)?,
+            "quadrature" => self.quadrature = Choice::named(text()?)?,
             "gaussian_method" => self.gaussian_method = Choice::named(text()?)?,
             "method" => self.method = Choice::named(text()?)?,
             "volume_weighting" => self.volume_weighting = Choice::named(text()?)?,

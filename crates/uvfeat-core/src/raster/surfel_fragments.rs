@@ -1,0 +1,177 @@
+//! The pieces surfels are built from (DESIGN.md §1.4.8): each face's UV triangle clipped to the
+//! texels of the grid, with its 3D area, centroid and normal; and points along the chart
+//! boundaries that tell which surfels a seam joins and which a mesh border passes through.
+
+use crate::frame::Frame;
+use crate::mesh::{SideKind, Topology};
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// The part of one face in one texel (or, summed, a surfel): area and area-weighted sums.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Fragment {
+    pub texel: u32,
+    pub chart: i32,
+    pub area: f64,
+    pub moment: DVec3,
+    pub normal: DVec3,
+}
+
+/// The same seam point seen from its two faces: parametric point and chart on each side.
+pub(super) type SeamPoints = ((DVec2, i32), (DVec2, i32));
+
+/// The parts of face `f` in each texel of a `width`² grid.
+pub(super) fn face_fragments(topology: &Topology, frame: &Frame, f: usize, width: usize, smooth: bool) -> Vec<Fragment> {
+    let chart = topology.face_chart[f];
+    let Some(map) = frame.face_map(topology, f as u32) else { return Vec::new() };
+    let w = width as f64;
+    let corners = topology.corner_uvs(f).map(|uv| uv * w);
+    let texel_area = map.area_element / (w * w);
+    let (lo, hi) = (corners[0].min(corners[1]).min(corners[2]), corners[0].max(corners[1]).max(corners[2]));
+    let (i0, j0) = ((lo.x.floor().max(0.0)) as usize, (lo.y.floor().max(0.0)) as usize);
+    let (i1, j1) = ((hi.x.floor() as usize).min(width - 1), (hi.y.floor() as usize).min(width - 1));
+    let mut out = Vec::new();
+    let triangle = Polygon::from(&corners);
+    for j in j0..=j1 {
+        let row = triangle.clip(1, j as f64, j as f64 + 1.0);
+        for i in i0..=i1 {
+            let piece = row.clip(0, i as f64, i as f64 + 1.0);
+            let (uv_area, centroid) = piece.area_centroid();
+            if !(uv_area > 0.0) {
+                continue;
+            }
+            let uv = centroid / w;
+            let position = if smooth { map.smooth_position(uv) } else { map.position(uv) };
+            let area = uv_area * texel_area;
+            out.push(Fragment {
+                texel: (j * width + i) as u32,
+                chart,
+                area,
+                moment: position * area,
+                normal: map.normal(uv) * area,
+            });
+        }
+    }
+    out
+}
+
+/// Points sampled every half texel along the chart boundaries: seam points paired with the same
+/// point seen from the face across, and points of mesh borders; each nudged into its face so that
+/// it falls in a texel that holds part of the face.
+pub(super) fn boundary_points(topology: &Topology, width: usize) -> (Vec<SeamPoints>, Vec<(DVec2, i32)>) {
+    let w = width as f64;
+    let inward = |face: u32, uv: DVec2| {
+        let c = topology.corner_uvs(face as usize);
+        uv + ((c[0] + c[1] + c[2]) / 3.0 - uv) * 1e-4
+    };
+    let along = |a: [DVec2; 2], extra: DVec2| {
+        let n = ((a[1] - a[0]).length().max(extra.x) * 2.0 * w).ceil().clamp(1.0, 8.0 * w) as usize;
+        (0..n).map(move |k| (k as f64 + 0.5) / n as f64)
+    };
+    let seams = topology
+        .sides
+        .par_iter()
+        .enumerate()
+        .filter(|(s, side)| matches!(side.kind, SideKind::Seam { .. }) && (*s as i32) < side.reverse)
+        .flat_map_iter(|(_, side)| {
+            let other = &topology.sides[side.reverse as usize];
+            let (ids, uv) = topology.side_endpoints(side);
+            let (other_ids, other_uv) = topology.side_endpoints(other);
+            let other_uv = if other_ids[0] == ids[0] { other_uv } else { [other_uv[1], other_uv[0]] };
+            let longer = DVec2::splat((other_uv[1] - other_uv[0]).length());
+            along(uv, longer).map(move |t| {
+                let a = inward(side.face, uv[0].lerp(uv[1], t));
+                let b = inward(other.face, other_uv[0].lerp(other_uv[1], t));
+                ((a, side.chart), (b, other.chart))
+            })
+        })
+        .collect();
+    let borders = topology
+        .sides
+        .par_iter()
+        .filter(|side| !matches!(side.kind, SideKind::Seam { .. }))
+        .flat_map_iter(|side| {
+            let (_, uv) = topology.side_endpoints(side);
+            along(uv, DVec2::ZERO).map(move |t| (inward(side.face, uv[0].lerp(uv[1], t)), side.chart))
+        })
+        .collect();
+    (seams, borders)
+}
+
+/// A convex polygon of at most 9 vertices (a triangle clipped by a square).
+#[derive(Debug, Clone, Copy)]
+struct Polygon {
+    points: [DVec2; 9],
+    len: usize,
+}
+
+impl Polygon {
+    fn from(triangle: &[DVec2; 3]) -> Self {
+        let mut points = [DVec2::ZERO; 9];
+        points[..3].copy_from_slice(triangle);
+        Self { points, len: 3 }
+    }
+
+    /// The part with coordinate `axis` in `[lo, hi]` (Sutherland–Hodgman, two half-planes).
+    fn clip(&self, axis: usize, lo: f64, hi: f64) -> Self {
+        self.clip_half(axis, lo, 1.0).clip_half(axis, hi, -1.0)
+    }
+
+    /// The part where `sign (x[axis] - bound) >= 0`.
+    fn clip_half(&self, axis: usize, bound: f64, sign: f64) -> Self {
+        let mut out = Self { points: [DVec2::ZERO; 9], len: 0 };
+        let inside = |p: DVec2| sign * (p[axis] - bound);
+        for k in 0..self.len {
+            let (a, b) = (self.points[k], self.points[(k + 1) % self.len]);
+            let (da, db) = (inside(a), inside(b));
+            if da >= 0.0 && out.len < 9 {
+                out.points[out.len] = a;
+                out.len += 1;
+            }
+            if (da >= 0.0) != (db >= 0.0) && out.len < 9 {
+                out.points[out.len] = a + (b - a) * (da / (da - db));
+                out.len += 1;
+            }
+        }
+        out
+    }
+
+    /// Unsigned area and centroid (shoelace).
+    fn area_centroid(&self) -> (f64, DVec2) {
+        if self.len < 3 {
+            return (0.0, DVec2::ZERO);
+        }
+        let (mut twice_area, mut moment) = (0.0, DVec2::ZERO);
+        for k in 0..self.len {
+            let (a, b) = (self.points[k], self.points[(k + 1) % self.len]);
+            let cross = a.perp_dot(b);
+            twice_area += cross;
+            moment += (a + b) * cross;
+        }
+        if twice_area == 0.0 {
+            return (0.0, DVec2::ZERO);
+        }
+        (twice_area.abs() / 2.0, moment / (3.0 * twice_area))
+    }
+}
+
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clipping_keeps_area_and_centroid() {
+        let triangle = Polygon::from(&[DVec2::new(0.2, 0.1), DVec2::new(2.7, 0.4), DVec2::new(1.1, 2.9)]);
+        let (area, centroid) = triangle.area_centroid();
+        let (mut sum, mut moment) = (0.0, DVec2::ZERO);
+        for j in 0..3 {
+            for i in 0..3 {
+                let (a, c) = triangle.clip(1, j as f64, j as f64 + 1.0).clip(0, i as f64, i as f64 + 1.0).area_centroid();
+                sum += a;
+                moment += c * a;
+            }
+        }
+        assert!((sum - area).abs() < 1e-12 && (moment / sum - centroid).length() < 1e-12);
+    }
+}

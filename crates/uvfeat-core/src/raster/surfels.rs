@@ -1,0 +1,338 @@
+//! Surface elements ("surfels") of the atlas (DESIGN.md §1.4.8, `quadrature = "surfels"`): every
+//! texel of the geometry grid holds, per chart, the exact part of the surface whose UVs fall in it
+//! (each face's UV triangle clipped to the texel's square), as its 3D area, centroid and mean
+//! normal. The surfels partition the surface: each surface point belongs to exactly one, whatever
+//! the charts, seams or distortion, which is what a neighbourhood that counts surface once needs.
+//!
+//! A pyramid merges 2 x 2 texels per level, so that a neighbourhood of any radius can be summed
+//! over a few hundred surfels. A coarse surfel is one *connected* piece of a chart in its texel:
+//! two arms of a chart that meet in a coarse texel, or the two sides of a slit, stay apart, and
+//! coarse surfels are adjacent where their finer pieces are. At the finest level, surfels of one
+//! chart in neighbouring texels are adjacent, and seams join the surfels on their two sides.
+
+use super::surfel_fragments::{boundary_points, face_fragments, Fragment, SeamPoints};
+use crate::frame::Frame;
+use crate::mesh::Topology;
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// Levels stop when a texel side holds fewer than this many texels.
+const SMALLEST_LEVEL: usize = 4;
+
+/// The surfels of one level of the pyramid.
+#[derive(Debug, Clone, Default)]
+pub struct SurfelLevel {
+    /// Texels per side.
+    pub width: usize,
+    /// Texel `j * width + i` of each surfel.
+    pub texel: Vec<u32>,
+    /// Chart of each surfel.
+    pub chart: Vec<i32>,
+    /// 3D area.
+    pub area: Vec<f64>,
+    /// Area centroid (on the facets).
+    pub position: Vec<DVec3>,
+    /// Area-weighted mean of the unit normals, normalised.
+    pub normal: Vec<DVec3>,
+    /// A mesh border (or non-manifold edge) passes through the surfel.
+    pub on_border: Vec<bool>,
+    /// The surfel of the next level up that holds each surfel (empty at the top).
+    pub parent: Vec<u32>,
+    /// Adjacent surfels of `s`: `adjacent[adjacent_first[s]..adjacent_first[s + 1]]`.
+    adjacent_first: Vec<u32>,
+    adjacent: Vec<u32>,
+    /// Finest level only: the surfels of texel `t` are `by_texel[t]..by_texel[t + 1]` (texel order).
+    by_texel: Vec<u32>,
+}
+
+impl SurfelLevel {
+    /// Number of surfels.
+    pub fn len(&self) -> usize {
+        self.chart.len()
+    }
+
+    /// `true` when the level holds no surfel.
+    pub fn is_empty(&self) -> bool {
+        self.chart.is_empty()
+    }
+
+    /// Texel `(i, j)` of surfel `s`.
+    pub fn texel(&self, s: u32) -> (i64, i64) {
+        let t = self.texel[s as usize] as usize;
+        ((t % self.width) as i64, (t / self.width) as i64)
+    }
+
+    /// The texel `(i, j)` of parametric point `uv`.
+    pub fn texel_of(&self, uv: DVec2) -> (i64, i64) {
+        let w = self.width as f64;
+        ((uv.x * w).floor() as i64, (uv.y * w).floor() as i64)
+    }
+
+    /// Finest level only: the surfel of `chart` in texel `(i, j)`, if that texel holds part of it.
+    pub fn at(&self, i: i64, j: i64, chart: i32) -> Option<u32> {
+        let w = self.width as i64;
+        if i < 0 || j < 0 || i >= w || j >= w || self.by_texel.is_empty() {
+            return None;
+        }
+        let t = (j * w + i) as usize;
+        (self.by_texel[t]..self.by_texel[t + 1]).find(|&s| self.chart[s as usize] == chart)
+    }
+
+    /// Surfels adjacent to `s` on the surface.
+    #[inline]
+    pub fn neighbours(&self, s: u32) -> &[u32] {
+        &self.adjacent[self.adjacent_first[s as usize] as usize..self.adjacent_first[s as usize + 1] as usize]
+    }
+
+    /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
+    /// across texel sides and across the seams.
+    fn finest(width: usize, mut fragments: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
+        fragments.par_sort_unstable_by_key(|f| (f.texel, f.chart));
+        let mut owner = vec![0u32; fragments.len()];
+        for k in 1..fragments.len() {
+            let new = (fragments[k].texel, fragments[k].chart) != (fragments[k - 1].texel, fragments[k - 1].chart);
+            owner[k] = owner[k - 1] + u32::from(new);
+        }
+        let mut level = Self::summed(width, &fragments, &owner);
+        level.by_texel = vec![0; width * width + 1];
+        for &t in &level.texel {
+            level.by_texel[t as usize + 1] += 1;
+        }
+        for t in 0..width * width {
+            level.by_texel[t + 1] += level.by_texel[t];
+        }
+        let (pairs, on_border) = {
+            let level = &level;
+            let find = |(uv, chart): (DVec2, i32)| {
+                let (i, j) = level.texel_of(uv);
+                level.at(i, j, chart)
+            };
+            let mut pairs: Vec<(u32, u32)> = seams.par_iter().filter_map(|&(a, b)| Some((find(a)?, find(b)?))).collect();
+            pairs.par_extend((0..level.len() as u32).into_par_iter().flat_map_iter(move |s| {
+                let (i, j) = level.texel(s);
+                let chart = level.chart[s as usize];
+                [(1, 0), (0, 1)].into_iter().filter_map(move |(di, dj)| Some((s, level.at(i + di, j + dj, chart)?)))
+            }));
+            (pairs, borders.iter().filter_map(|&point| find(point)).collect::<Vec<u32>>())
+        };
+        level.set_adjacency(pairs);
+        for s in on_border {
+            level.on_border[s as usize] = true;
+        }
+        level
+    }
+
+    /// Surfels from fragments grouped by `owner` (consecutive ids from 0, in texel order).
+    fn summed(width: usize, fragments: &[Fragment], owner: &[u32]) -> Self {
+        let n = owner.last().map_or(0, |&o| o as usize + 1);
+        let mut sums = vec![Fragment { texel: 0, chart: -1, area: 0.0, moment: DVec3::ZERO, normal: DVec3::ZERO }; n];
+        for (f, &o) in fragments.iter().zip(owner) {
+            let sum = &mut sums[o as usize];
+            sum.texel = f.texel;
+            sum.chart = f.chart;
+            sum.area += f.area;
+            sum.moment += f.moment;
+            sum.normal += f.normal;
+        }
+        Self {
+            width,
+            texel: sums.iter().map(|s| s.texel).collect(),
+            chart: sums.iter().map(|s| s.chart).collect(),
+            area: sums.iter().map(|s| s.area).collect(),
+            position: sums.iter().map(|s| if s.area > 0.0 { s.moment / s.area } else { DVec3::ZERO }).collect(),
+            normal: sums.iter().map(|s| s.normal.normalize_or_zero()).collect(),
+            on_border: vec![false; n],
+            ..Default::default()
+        }
+    }
+
+    /// Adjacency from pairs `(a, b)` (either order, repeats and `a == b` allowed).
+    fn set_adjacency(&mut self, pairs: Vec<(u32, u32)>) {
+        let mut both: Vec<(u32, u32)> =
+            pairs.into_iter().filter(|(a, b)| a != b).flat_map(|(a, b)| [(a, b), (b, a)]).collect();
+        both.par_sort_unstable();
+        both.dedup();
+        self.adjacent_first = vec![0; self.len() + 1];
+        for &(a, _) in &both {
+            self.adjacent_first[a as usize + 1] += 1;
+        }
+        for s in 0..self.len() {
+            self.adjacent_first[s + 1] += self.adjacent_first[s];
+        }
+        self.adjacent = both.into_iter().map(|(_, b)| b).collect();
+    }
+
+    /// The next level up: in each 2 x 2 block of texels, the surfels of one chart joined by
+    /// adjacency form one surfel; sets `self.parent`.
+    fn coarser(&mut self) -> Self {
+        let width = self.width.div_ceil(2);
+        let up = |t: u32| {
+            let (i, j) = (t as usize % self.width, t as usize / self.width);
+            ((j / 2) * width + i / 2) as u32
+        };
+        let key = |s: usize| (up(self.texel[s]), self.chart[s]);
+        // Union-find over the surfels, joining adjacent ones of the same block and chart.
+        let mut root: Vec<u32> = (0..self.len() as u32).collect();
+        fn find(root: &mut [u32], mut s: u32) -> u32 {
+            while root[s as usize] != s {
+                root[s as usize] = root[root[s as usize] as usize];
+                s = root[s as usize];
+            }
+            s
+        }
+        for s in 0..self.len() {
+            for &t in self.neighbours(s as u32) {
+                if key(s) == key(t as usize) {
+                    let (a, b) = (find(&mut root, s as u32), find(&mut root, t));
+                    root[a.max(b) as usize] = a.min(b);
+                }
+            }
+        }
+        let mut order: Vec<(u32, i32, u32, u32)> = (0..self.len())
+            .map(|s| {
+                let (texel, chart) = key(s);
+                (texel, chart, find(&mut root, s as u32), s as u32)
+            })
+            .collect();
+        order.par_sort_unstable();
+        let mut owner = vec![0u32; order.len()];
+        for k in 1..order.len() {
+            owner[k] = owner[k - 1] + u32::from(order[k].2 != order[k - 1].2);
+        }
+        let fragments: Vec<Fragment> = order
+            .iter()
+            .map(|&(texel, chart, _, s)| {
+                let s = s as usize;
+                Fragment {
+                    texel,
+                    chart,
+                    area: self.area[s],
+                    moment: self.position[s] * self.area[s],
+                    normal: self.normal[s] * self.area[s],
+                }
+            })
+            .collect();
+        let mut next = Self::summed(width, &fragments, &owner);
+        self.parent = vec![0; self.len()];
+        for (&(.., s), &o) in order.iter().zip(&owner) {
+            self.parent[s as usize] = o;
+            next.on_border[o as usize] |= self.on_border[s as usize];
+        }
+        let pairs = (0..self.len())
+            .flat_map(|s| self.neighbours(s as u32).iter().map(move |&t| (s, t as usize)))
+            .map(|(s, t)| (self.parent[s], self.parent[t]))
+            .collect();
+        next.set_adjacency(pairs);
+        next
+    }
+}
+
+/// The surfel pyramid of one frame; level 0 has the atlas's resolution.
+#[derive(Debug, Clone, Default)]
+pub struct Surfels {
+    /// Finest first; level `k` has `ceil(W / 2^k)` texels per side.
+    pub levels: Vec<SurfelLevel>,
+}
+
+impl Surfels {
+    /// Clips every face of the frame to the texels of a `width`² grid and builds the pyramid.
+    /// Centroids lie on the smooth surface of the triangle lookup when `smooth` (DESIGN.md §1.3.6),
+    /// else on the facets.
+    pub fn build(topology: &Topology, frame: &Frame, width: usize, smooth: bool) -> Self {
+        let fragments: Vec<Fragment> = (0..topology.faces.len())
+            .into_par_iter()
+            .flat_map_iter(|f| face_fragments(topology, frame, f, width, smooth))
+            .collect();
+        let (seams, borders) = boundary_points(topology, width);
+        let mut levels = vec![SurfelLevel::finest(width, fragments, &seams, &borders)];
+        while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL) {
+            let next = last.coarser();
+            levels.push(next);
+        }
+        Self { levels }
+    }
+
+    /// The surfel of `level` that holds the finest surfel `s`.
+    pub fn ancestor(&self, mut s: u32, level: usize) -> u32 {
+        for l in &self.levels[..level] {
+            s = l.parent[s as usize];
+        }
+        s
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.levels
+            .iter()
+            .map(|l| l.len() * 73 + l.adjacent_first.len() * 4 + l.adjacent.len() * 4 + l.by_texel.len() * 4)
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Topology, TriangleMesh};
+    use crate::shapes;
+
+    fn torus_surfels(width: usize) -> (f64, Surfels) {
+        let torus = shapes::torus(2.0, 0.5, 64, 32);
+        let mesh = TriangleMesh::new(&torus.positions, &torus.faces, &torus.uvs, &torus.uv_faces).unwrap();
+        let topology = Topology::build(&mesh, 0.0).unwrap();
+        let frame = Frame::new(&topology, &mesh.positions).unwrap();
+        let area: f64 = mesh
+            .faces
+            .iter()
+            .map(|f| {
+                let [a, b, c] = f.map(|v| mesh.positions[v as usize]);
+                (b - a).cross(c - a).length() / 2.0
+            })
+            .sum();
+        (area, Surfels::build(&topology, &frame, width, false))
+    }
+
+    #[test]
+    fn surfels_partition_the_surface_at_every_level() {
+        let (area, surfels) = torus_surfels(64);
+        assert_eq!(surfels.levels.len(), 5); // 64, 32, 16, 8, 4
+        for level in &surfels.levels {
+            let total: f64 = level.area.iter().sum();
+            assert!((total / area - 1.0).abs() < 1e-9, "level {}: {total} vs {area}", level.width);
+        }
+    }
+
+    #[test]
+    fn the_seam_of_a_torus_chart_links_both_sides() {
+        // The lat-long torus is one chart whose u = 0 and u = 1 edges (and v = 0, v = 1) are seams:
+        // surfels in the first column link to surfels in the last.
+        let (_, surfels) = torus_surfels(64);
+        let level = &surfels.levels[0];
+        let row: Vec<i64> = (0..64).filter(|&i| level.at(i, 20, 0).is_some()).collect();
+        let (left, right) = (row[0], row[row.len() - 1]);
+        assert!(right - left > 56, "{row:?}");
+        let across: Vec<(i64, i64)> =
+            level.neighbours(level.at(left, 20, 0).unwrap()).iter().map(|&s| level.texel(s)).collect();
+        assert!(across.iter().any(|&(i, j)| i == right && (j - 20).abs() <= 1), "{across:?}");
+        assert!(level.on_border.iter().all(|&b| !b));
+    }
+
+    #[test]
+    fn coarse_surfels_are_connected_pieces_with_their_parents_neighbours() {
+        let (_, surfels) = torus_surfels(64);
+        for (fine, coarse) in surfels.levels.iter().zip(&surfels.levels[1..]) {
+            for s in 0..fine.len() as u32 {
+                let p = fine.parent[s as usize];
+                assert_eq!(coarse.chart[p as usize], fine.chart[s as usize]);
+                for &t in fine.neighbours(s) {
+                    let q = fine.parent[t as usize];
+                    assert!(p == q || coarse.neighbours(p).contains(&q));
+                }
+            }
+        }
+        // One chart, no slit: one surfel per covered coarse texel.
+        let top = surfels.levels.last().unwrap();
+        let mut texels = top.texel.clone();
+        texels.dedup();
+        assert_eq!(texels.len(), top.len());
+    }
+}

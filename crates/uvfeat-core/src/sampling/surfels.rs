@@ -1,0 +1,134 @@
+//! A neighbourhood summed over the atlas's surfels (DESIGN.md §1.4.8, `quadrature = "surfels"`):
+//! the surfels connected to the centre inside the ball, each counted once with its exact area.
+//!
+//! The pattern's neighbourhood is a disk in the centre's parametric plane carried across seams by
+//! hinge maps; around convex regions and round parts thinner than the ball that development
+//! overlaps itself (surface counted two to five times on a scan at r = 6 %), and behind saddles
+//! it leaves gaps. Surfels partition the surface, so neither happens: the neighbourhood is the
+//! set of surfels reached from the centre's through neighbouring texels of a chart and across
+//! seams while inside the ball, as the object-space reference's search over edges does.
+//!
+//! The level of the pyramid is the coarsest whose ball holds about [`TARGET_SURFELS`], so the cost
+//! does not grow with the radius. A surfel's weight ramps linearly over one surfel width across
+//! the ball's edge, centred so that a plane's disk weighs exactly `pi r^2` (as the shared lattice's
+//! ramp, DESIGN.md §1.4.7).
+//!
+//! The surface summed is the mesh's own: surfels and centre lie on the facets, as for the
+//! object-space reference and its refinements (the pattern's triangle lookup lifts its points onto
+//! a smooth surface through the vertex normals instead).
+
+use super::centre::Centre;
+use super::geodesic::arc_distance;
+use super::sample::{Sample, SampleCounts};
+use super::settings::{Criterion, SamplerSettings};
+use crate::atlas::Atlas;
+use crate::raster::SurfelLevel;
+use crate::reference::StampedValues;
+use std::cell::RefCell;
+
+/// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level). At 512
+/// the quadrature's error is a few tenths of a percent of H's range on the shared scans.
+pub const TARGET_SURFELS: f64 = 512.0;
+
+thread_local! {
+    /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
+    static REACHED: RefCell<(StampedValues, Vec<u32>)> = RefCell::new((StampedValues::new(0), Vec::new()));
+}
+
+/// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about
+/// [`TARGET_SURFELS`] in the ball at the centre's area element.
+pub fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius: f64) -> usize {
+    // A level-k surfel covers J (2^k / W)^2 of surface; pi r^2 over that is the target when
+    // 2^k = W r sqrt(pi / (J target)).
+    let scale = resolution as f64 * radius * (std::f64::consts::PI / (centre.distortion.area_element() * TARGET_SURFELS)).sqrt();
+    let widest = scale.log2().round();
+    (widest.max(0.0) as usize).min(n_levels.saturating_sub(1))
+}
+
+/// Appends the surfels of the ball's connected part around `centre` to `out` as samples
+/// (`pattern_index` is the surfel's index in its level); `border` counts those a mesh border
+/// passes through.
+pub fn gather_surfels(atlas: &Atlas, centre: &Centre, settings: &SamplerSettings, out: &mut Vec<Sample>) -> SampleCounts {
+    let surfels = atlas.surfels();
+    let k = surfel_level(surfels.levels.len(), atlas.resolution(), centre, settings.radius);
+    let level = &surfels.levels[k];
+    let mut counts = SampleCounts::default();
+    let Some(start) = start_surfel(&surfels.levels[0], centre) else { return counts };
+    let start = surfels.ancestor(start, k);
+    let r = settings.radius;
+    // The surfels lie on the facets, so the centre does too (the lookup's smooth surface is up to
+    // h^2 k / 8 above them, which would move H by 4 delta / r^2).
+    let Some(map) = atlas.frame.face_map(&atlas.topology, centre.home.face) else { return counts };
+    let p = map.position(centre.home.point);
+    // One surfel width in object units at the centre.
+    let width = centre.distortion.area_element().sqrt() * (1u64 << k) as f64 / atlas.resolution() as f64;
+    let width = width.min(0.5 * r);
+    let edge = (r * r - width * width / 12.0).sqrt();
+    let (inner, outer) = (edge - width / 2.0, edge + width / 2.0);
+    let reach = outer;
+    REACHED.with_borrow_mut(|(reached, queue)| {
+        if reached.len() < level.len() {
+            *reached = StampedValues::new(surfels.levels[0].len());
+        }
+        reached.reset();
+        queue.clear();
+        reached.set(start, 0.0);
+        queue.push(start);
+        let mut next = 0;
+        while let Some(&s) = queue.get(next) {
+            next += 1;
+            let position = level.position[s as usize];
+            let offset = position - p;
+            let distance = offset.length();
+            if distance >= reach {
+                continue;
+            }
+            for &t in level.neighbours(s) {
+                if !reached.contains(t) {
+                    reached.set(t, 0.0);
+                    queue.push(t);
+                }
+            }
+            if distance >= outer || distance <= 1e-6 * r {
+                continue;
+            }
+            let sin_alpha = centre.normal.dot(offset) / distance;
+            let geodesic = if settings.with_geodesic { arc_distance(distance, sin_alpha) } else { f64::NAN };
+            if settings.criterion == Criterion::Geodesic && geodesic >= r {
+                continue;
+            }
+            let ramp = ((outer - distance) / (outer - inner)).min(1.0);
+            out.push(Sample {
+                position,
+                normal: level.normal[s as usize],
+                area: level.area[s as usize] * ramp,
+                distance,
+                sin_alpha,
+                geodesic,
+                pattern_index: s,
+            });
+            counts.valid += 1;
+            counts.border += u32::from(level.on_border[s as usize] && distance < r);
+        }
+    });
+    counts
+}
+
+/// The finest surfel of the centre's chart in the centre's texel, or in the nearest of its eight
+/// neighbours (the centre of a gutter texel lies just off its chart).
+fn start_surfel(level: &SurfelLevel, centre: &Centre) -> Option<u32> {
+    let (i, j) = level.texel_of(centre.uv);
+    if let Some(s) = level.at(i, j, centre.chart) {
+        return Some(s);
+    }
+    let w = level.width as f64;
+    (-1..=1)
+        .flat_map(|dj| (-1..=1).map(move |di| (di, dj)))
+        .filter_map(|(di, dj)| {
+            let s = level.at(i + di, j + dj, centre.chart)?;
+            let texel_centre = glam::DVec2::new((i + di) as f64 + 0.5, (j + dj) as f64 + 0.5) / w;
+            Some((texel_centre.distance_squared(centre.uv), s))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, s)| s)
+}
