@@ -74,10 +74,11 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
             compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
             gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"],
             query: str = DEFAULT_OPTIONS["query"], method: str = DEFAULT_OPTIONS["method"],
-            sampling: str = DEFAULT_OPTIONS["sampling"],
-            truth_levels: int = 2) -> Comparison:
+            sampling: str = DEFAULT_OPTIONS["sampling"], quadrature: str = DEFAULT_OPTIONS["quadrature"],
+            surface: str = DEFAULT_OPTIONS["surface"], truth_levels: int = 2) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
-    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"shared"``, ``"fast"`` or ``"exact"``) and the
+    ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"shared"``, ``"fast"`` or ``"exact"``,
+    neighbourhood sums by ``quadrature`` and ``surface``, see :meth:`uvfeat.Atlas.compute`) and the
     object-space reference on ``mesh`` for ``features`` at ``radius`` (object units or ``"2%"``),
     times both, and measures both against the truth: the reference on the same surface refined
     until it converges (up to ``truth_levels`` midpoint subdivisions, see
@@ -105,7 +106,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     buffers_s = time.perf_counter() - started
     maps = atlas.compute(names, radius, samples=samples, compute_resolution=compute_resolution, seed=seed,
                          gaussian_method=PARAMETRIC_GAUSSIAN[gaussian_method], query=query, method=method,
-                         sampling=sampling)
+                         sampling=sampling, quadrature=quadrature, surface=surface)
     features_s = time.perf_counter() - started - buffers_s
     values = {name: m.per_vertex() for name, m in maps.items()}
     parametric_s = time.perf_counter() - started

@@ -48,6 +48,8 @@ class FeatureJob:
     query: str = DEFAULT_OPTIONS["query"]
     method: str = DEFAULT_OPTIONS["method"]
     sampling: str = DEFAULT_OPTIONS["sampling"]
+    quadrature: str = DEFAULT_OPTIONS["quadrature"]
+    surface: str = DEFAULT_OPTIONS["surface"]
     standard_error: bool = False
     directions: str | None = None
     uv: str = "auto"
@@ -65,7 +67,8 @@ class FeatureJob:
             raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {self.query!r}")
         _core.compute_settings(list(self.features), 1.0, {
             "samples": self.samples, "compute_resolution": check_resolution(self.compute_resolution, "compute_resolution"),
-            "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling})
+            "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
+            "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error})
         if self.directions and self.method != "fit":
             raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
 
@@ -74,8 +77,8 @@ class FeatureJob:
         """The job of a command's parsed arguments (``--feature``, ``--radius``, ``--samples`` ...);
         the computation options a command does not offer (``--adaptive``, ``--paper-mode``,
         ``--standard-error``, ``--directions``) keep their defaults."""
-        offered = {name: getattr(args, name) for name in ("adaptive", "paper_mode", "standard_error", "directions")
-                   if hasattr(args, name)}
+        offered = {name: getattr(args, name) for name in ("adaptive", "paper_mode", "standard_error", "directions",
+                                                          "quadrature", "surface") if hasattr(args, name)}
         return cls(features=args.feature, radii=args.radius, samples=args.samples, resolution=args.resolution,
                    compute_resolution=args.compute_resolution, seed=args.seed, query=args.query, method=args.method,
                    sampling=args.sampling, uv=args.uv, strict_uv=args.strict_uv, pictures=pictures, **offered)
@@ -84,7 +87,8 @@ class FeatureJob:
         """The keyword options of :meth:`uvfeat.Atlas.compute` this job runs with."""
         return {"samples": self.samples, "compute_resolution": self.compute_resolution, "adaptive": self.adaptive,
                 "seed": self.seed, "paper_mode": self.paper_mode, "query": self.query,
-                "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling}
+                "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling,
+                "quadrature": self.quadrature, "surface": self.surface}
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""

@@ -5,6 +5,7 @@ use crate::error::{Result, UvfeatError};
 use crate::frame::Frame;
 use crate::mesh::Topology;
 use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision, Surfels};
+use crate::sampling::Surface;
 use glam::{DVec2, DVec3};
 use std::sync::{Arc, OnceLock};
 
@@ -39,8 +40,9 @@ pub struct Atlas {
     pub frame: Frame,
     /// Per-frame geometry buffers, evaluated on first use (see [`Atlas::buffers`]).
     buffers: OnceLock<GeometryBuffers>,
-    /// Per-frame surfel pyramid, built on first use (see [`Atlas::surfels`]).
-    surfels: OnceLock<Surfels>,
+    /// Per-frame surfel pyramids on the smooth surface and on the facets, built on first use (see
+    /// [`Atlas::surfels`]).
+    surfels: [OnceLock<Surfels>; 2],
     /// Per-frame compact surface patches of the faces (the sampler's fast path).
     pub patches: FacePatches,
     /// Storage precision of positions and normals.
@@ -63,7 +65,7 @@ impl Atlas {
             coverage,
             frame,
             buffers: OnceLock::new(),
-            surfels: OnceLock::new(),
+            surfels: Default::default(),
             patches,
             precision: options.precision,
         })
@@ -78,10 +80,12 @@ impl Atlas {
             .get_or_init(|| GeometryBuffers::evaluate(&self.topology, &self.coverage, &self.frame, self.precision))
     }
 
-    /// The surfel pyramid of the frame (DESIGN.md §1.4.8), on the mesh's facets;
-    /// built on first use by `quadrature = "surfels"` (~0.1 s and ~40 MB for 100K faces at 1024²).
-    pub fn surfels(&self) -> &Surfels {
-        self.surfels.get_or_init(|| Surfels::build(&self.topology, &self.frame, self.resolution(), false))
+    /// The surfel pyramid of the frame on `surface` (DESIGN.md §1.4.8), built on first use by
+    /// `quadrature = "surfels"`.
+    pub fn surfels(&self, surface: Surface) -> &Surfels {
+        let smooth = surface == Surface::Smooth;
+        self.surfels[usize::from(smooth)]
+            .get_or_init(|| Surfels::build(&self.topology, &self.frame, self.resolution(), smooth))
     }
 
     /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, patches; the buffers on
@@ -93,7 +97,7 @@ impl Atlas {
     pub fn update(&mut self, positions: &[DVec3]) -> Result<()> {
         self.frame.refresh(&self.topology, positions)?;
         self.buffers = OnceLock::new();
-        self.surfels = OnceLock::new();
+        self.surfels = Default::default();
         self.patches.refresh(&self.topology, &self.frame);
         Ok(())
     }

@@ -10,6 +10,7 @@ use crate::sampling::{
     centre_at, disk_pattern, gather, gather_covering, gather_surfels, Centre, Placement, Quadrature, Sample,
     SampleCounts, TURNS,
 };
+use crate::lookup::Lookup;
 use crate::settings::ComputeSettings;
 use glam::DVec2;
 
@@ -34,6 +35,17 @@ impl Patterns {
         } else {
             Self { first: disk_pattern(n, settings.seed, 0), second: Vec::new() }
         }
+    }
+}
+
+/// Builds the per-frame data `settings` reads (bilinear buffers, surfels) before the parallel work
+/// starts, rather than in the first worker that needs it while the others wait on it idle.
+pub fn prepare(atlas: &Atlas, settings: &ComputeSettings) {
+    if settings.lookup == Lookup::Bilinear {
+        atlas.buffers();
+    }
+    if settings.quadrature == Quadrature::Surfels {
+        atlas.surfels(settings.surface);
     }
 }
 

@@ -53,7 +53,7 @@ def run(args) -> int:
         raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
     options = dict(frames=args.frames, fps=args.fps, animation=args.animation, resolution=args.resolution, uv=args.uv,
                    samples=args.samples, compute_resolution=args.compute_resolution, seed=args.seed,
-                   method=args.method, sampling=args.sampling)
+                   method=args.method, sampling=args.sampling, quadrature=args.quadrature, surface=args.surface)
     frames, notes = open_animation(args.mesh, args.feature, args.radius, **options)
     notes += frames.atlas.warnings()
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
@@ -80,7 +80,8 @@ def run(args) -> int:
         "uvfeat": __version__, "mesh": frames.mesh.name, "animation": frames.animation_name, "frames": total,
         "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": args.samples,
                      "resolution": args.resolution, "compute_resolution": args.compute_resolution, "seed": args.seed,
-                     "method": args.method, "sampling": args.sampling},
+                     "method": args.method, "sampling": args.sampling, "quadrature": args.quadrature,
+                     "surface": args.surface},
         "colour_ranges": ranges, "warnings": notes, "diagnostics": frames.atlas.diagnostics,
         "timings": {"once_s": frames.atlas.timings, "mean_per_frame_ms": mean_ms, "per_frame": per_frame,
                     "total_s": time.perf_counter() - started},

@@ -42,7 +42,7 @@ def write_comparison(mesh, args, console, load_notes: list[str], started: float)
             result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
                              compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
                              seed=args.seed, query=args.query, method=args.method, sampling=args.sampling,
-                             truth_levels=args.truth_levels)
+                             quadrature=args.quadrature, surface=args.surface, truth_levels=args.truth_levels)
         advance("pictures")
         summary = result.to_dict()
         summary["warnings"] = load_notes + notes

@@ -37,6 +37,7 @@ def run(args) -> int:
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.adaptive, args.paper_mode = 256, False, False
     args.seed, args.query, args.standard_error, args.method, args.directions = 0, "texture", False, "integral", None
-    args.sampling = DEFAULT_OPTIONS["sampling"]
+    args.sampling, args.quadrature, args.surface = (DEFAULT_OPTIONS[name] for name in ("sampling", "quadrature",
+                                                                                     "surface"))
     write_features(mesh, args, out, [], time.perf_counter())
     return 0

@@ -3,9 +3,8 @@
 
 use crate::atlas::Atlas;
 use crate::error::Result;
-use crate::evaluation::{evaluate_point, Patterns, PixelResult};
+use crate::evaluation::{evaluate_point, prepare, Patterns, PixelResult};
 use crate::features::{CurvatureMethod, Feature};
-use crate::lookup::Lookup;
 use crate::sampling::Placement;
 use crate::settings::ComputeSettings;
 use crate::tile_evaluation::{evaluate_tile, shared_lattice_applies, texel_uv};
@@ -93,10 +92,7 @@ impl FeatureMaps {
         settings.validate()?;
         let w = settings.resolution;
         let patterns = Patterns::new(settings);
-        if settings.lookup == Lookup::Bilinear {
-            // Evaluated once here rather than by the first worker that looks a sample up.
-            atlas.buffers();
-        }
+        prepare(atlas, settings);
         let tiles = tiles(w);
         let shared = shared_lattice_applies(atlas, settings);
         let results: Vec<PixelResult> = tiles

@@ -2,6 +2,7 @@
 //! operators `F(p, S(p))` (DESIGN.md §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
 use crate::atlas::Atlas;
+use crate::evaluation::prepare;
 use crate::sampling::{
     centre_at, disk_pattern, gather_covering, gather_surfels, Placement, Quadrature, Sample, SamplerSettings,
 };
@@ -43,6 +44,7 @@ pub fn neighbourhood_tile(
     let n = settings.samples;
     let pattern = disk_pattern(n, settings.seed, 0);
     let sampler = SamplerSettings { with_normals: true, ..settings.sampler() };
+    prepare(atlas, settings);
     let per_texel: Vec<TexelSamples> = texels
         .into_par_iter()
         .filter_map(|t| {

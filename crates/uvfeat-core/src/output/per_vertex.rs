@@ -3,7 +3,7 @@
 
 use super::feature_map::FeatureMaps;
 use crate::atlas::Atlas;
-use crate::evaluation::{evaluate_point, Patterns};
+use crate::evaluation::{evaluate_point, prepare, Patterns};
 use crate::features::CurvatureMethod;
 use crate::mesh::NO_CORNER;
 use crate::sampling::Placement;
@@ -74,6 +74,7 @@ fn lookup(maps: &FeatureMaps, uv: DVec2, chart: i32) -> Option<Vec<f64>> {
 pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
     let (offsets, corners) = corners(atlas);
     let patterns = Patterns::new(settings);
+    prepare(atlas, settings);
     let n_features = maps.features.len();
     let mut geometric = vec![f64::NAN; (offsets.len() - 1) * n_features];
     geometric.par_chunks_mut(n_features.max(1)).enumerate().for_each_init(Vec::new, |scratch, (vertex, out)| {
@@ -121,6 +122,7 @@ pub fn per_corner(atlas: &Atlas, maps: &FeatureMaps) -> (Vec<DVec2>, Vec<u32>, V
 pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[[f32; 3]; 2]> {
     let settings = ComputeSettings { method: CurvatureMethod::Fit, standard_errors: false, ..settings.clone() };
     let patterns = Patterns::new(&settings);
+    prepare(atlas, &settings);
     let (offsets, corners) = corners(atlas);
     let geometric: Vec<[[f32; 3]; 2]> = (0..offsets.len() - 1)
         .into_par_iter()

@@ -87,7 +87,8 @@ impl SurfelLevel {
     /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
     /// across texel sides and across the seams.
     fn finest(width: usize, mut fragments: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
-        fragments.par_sort_unstable_by_key(|f| (f.texel, f.chart));
+        // Stable: fragments come in face order, so sums do not depend on the thread count.
+        fragments.par_sort_by_key(|f| (f.texel, f.chart));
         let mut owner = vec![0u32; fragments.len()];
         for k in 1..fragments.len() {
             let new = (fragments[k].texel, fragments[k].chart) != (fragments[k - 1].texel, fragments[k - 1].chart);

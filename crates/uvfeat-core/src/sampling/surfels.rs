@@ -13,14 +13,14 @@
 //! the ball's edge, centred so that a plane's disk weighs exactly `pi r^2` (as the shared lattice's
 //! ramp, DESIGN.md §1.4.7).
 //!
-//! The surface summed is the mesh's own: surfels and centre lie on the facets, as for the
-//! object-space reference and its refinements (the pattern's triangle lookup lifts its points onto
-//! a smooth surface through the vertex normals instead).
+//! The surface summed is the triangle lookup's smooth surface through the vertex normals (DESIGN.md
+//! §1.3.6), as for the pattern's samples, or with `surface = "facets"` the mesh's own facets, as
+//! the object-space reference and its refinements measure them (surfels and centre alike).
 
 use super::centre::Centre;
 use super::geodesic::arc_distance;
 use super::sample::{Sample, SampleCounts};
-use super::settings::{Criterion, SamplerSettings};
+use super::settings::{Criterion, SamplerSettings, Surface};
 use crate::atlas::Atlas;
 use crate::raster::SurfelLevel;
 use crate::reference::StampedValues;
@@ -38,9 +38,11 @@ thread_local! {
 /// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about
 /// [`TARGET_SURFELS`] in the ball at the centre's area element.
 pub fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius: f64) -> usize {
-    // A level-k surfel covers J (2^k / W)^2 of surface; pi r^2 over that is the target when
-    // 2^k = W r sqrt(pi / (J target)).
-    let scale = resolution as f64 * radius * (std::f64::consts::PI / (centre.distortion.area_element() * TARGET_SURFELS)).sqrt();
+    // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
+    // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
+    // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
+    // surface) takes a finer level.
+    let scale = resolution as f64 * radius * (std::f64::consts::PI / TARGET_SURFELS).sqrt() / centre.distortion.sigma1;
     let widest = scale.log2().round();
     (widest.max(0.0) as usize).min(n_levels.saturating_sub(1))
 }
@@ -49,17 +51,20 @@ pub fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius:
 /// (`pattern_index` is the surfel's index in its level); `border` counts those a mesh border
 /// passes through.
 pub fn gather_surfels(atlas: &Atlas, centre: &Centre, settings: &SamplerSettings, out: &mut Vec<Sample>) -> SampleCounts {
-    let surfels = atlas.surfels();
+    let surfels = atlas.surfels(settings.surface);
     let k = surfel_level(surfels.levels.len(), atlas.resolution(), centre, settings.radius);
     let level = &surfels.levels[k];
     let mut counts = SampleCounts::default();
     let Some(start) = start_surfel(&surfels.levels[0], centre) else { return counts };
     let start = surfels.ancestor(start, k);
     let r = settings.radius;
-    // The surfels lie on the facets, so the centre does too (the lookup's smooth surface is up to
-    // h^2 k / 8 above them, which would move H by 4 delta / r^2).
-    let Some(map) = atlas.frame.face_map(&atlas.topology, centre.home.face) else { return counts };
-    let p = map.position(centre.home.point);
+    let p = match settings.surface {
+        Surface::Smooth => centre.position,
+        Surface::Facets => {
+            let Some(map) = atlas.frame.face_map(&atlas.topology, centre.home.face) else { return counts };
+            map.position(centre.home.point)
+        }
+    };
     // One surfel width in object units at the centre.
     let width = centre.distortion.area_element().sqrt() * (1u64 << k) as f64 / atlas.resolution() as f64;
     let width = width.min(0.5 * r);

@@ -5,7 +5,7 @@ use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath, Surface};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]
@@ -40,6 +40,8 @@ pub struct ComputeSettings {
     pub overlaps: Overlaps,
     /// The pattern over the developed parametric disk (default) or the atlas's surfels.
     pub quadrature: Quadrature,
+    /// The surface the surfels lie on: smooth (default) or the mesh's facets.
+    pub surface: Surface,
     /// Seed of the pattern and the per-pixel rotations (0).
     pub seed: u64,
     /// Two-stage adaptive sampling (off).
@@ -78,6 +80,7 @@ impl ComputeSettings {
             sampling: SamplingPath::Shared,
             overlaps: Overlaps::Keep,
             quadrature: Quadrature::Pattern,
+            surface: Surface::Smooth,
             seed: 0,
             adaptive: false,
             tau: 0.01,
@@ -125,6 +128,9 @@ impl ComputeSettings {
                     .into(),
             );
         }
+        if self.surface == Surface::Facets && self.quadrature != Quadrature::Surfels {
+            return invalid("surface", "\"facets\" is a choice of quadrature=\"surfels\"".into());
+        }
         if !(self.flat_tol >= 0.0) {
             return invalid("flat_tol", format!("must be >= 0, got {}", self.flat_tol));
         }
@@ -149,6 +155,7 @@ impl ComputeSettings {
                 || (self.gaussian_method == GaussianMethod::GeodesicArea
                     && self.features.iter().any(|f| f.uses_gaussian_curvature())),
             overlaps: self.overlaps,
+            surface: self.surface,
         }
     }
 

@@ -8,7 +8,7 @@ use crate::features::{CurvatureMethod, GaussianMethod, VolumeWeighting};
 use crate::lookup::Lookup;
 use crate::raster::Precision;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplingPath, Surface};
 
 /// An option whose value is one of a few names.
 pub trait Choice: Copy + PartialEq + Sized + 'static {
@@ -65,6 +65,7 @@ crate::choice!(
 );
 crate::choice!(Overlaps, "overlaps", [("keep", Overlaps::Keep), ("drop", Overlaps::Drop)]);
 crate::choice!(Quadrature, "quadrature", [("pattern", Quadrature::Pattern), ("surfels", Quadrature::Surfels)]);
+crate::choice!(Surface, "surface", [("smooth", Surface::Smooth), ("facets", Surface::Facets)]);
 crate::choice!(
     GaussianMethod,
     "gaussian_method",
@@ -111,6 +112,7 @@ pub fn named_options(settings: &ComputeSettings) -> Vec<(&'static str, OptionVal
         ("sampling", Text(settings.sampling.name())),
         ("overlaps", Text(settings.overlaps.name())),
         ("quadrature", Text(settings.quadrature.name())),
+        ("surface", Text(settings.surface.name())),
         ("gaussian_method", Text(settings.gaussian_method.name())),
         ("method", Text(settings.method.name())),
         ("volume_weighting", Text(settings.volume_weighting.name())),
@@ -132,6 +134,7 @@ pub fn option_choices() -> Vec<(&'static str, Vec<&'static str>)> {
         (SamplingPath::OPTION, SamplingPath::names()),
         (Overlaps::OPTION, Overlaps::names()),
         (Quadrature::OPTION, Quadrature::names()),
+        (Surface::OPTION, Surface::names()),
         (GaussianMethod::OPTION, GaussianMethod::names()),
         (CurvatureMethod::OPTION, CurvatureMethod::names()),
         (VolumeWeighting::OPTION, VolumeWeighting::names()),
@@ -208,6 +211,7 @@ impl ComputeSettings {
             "sampling" => self.sampling = Choice::named(text()?)?,
             "overlaps" => self.overlaps = Choice::named(text()?)?,
             "quadrature" => self.quadrature = Choice::named(text()?)?,
+            "surface" => self.surface = Choice::named(text()?)?,
             "gaussian_method" => self.gaussian_method = Choice::named(text()?)?,
             "method" => self.method = Choice::named(text()?)?,
             "volume_weighting" => self.volume_weighting = Choice::named(text()?)?,

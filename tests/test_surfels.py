@@ -1,0 +1,125 @@
+"""quadrature="surfels" (issue 16, DESIGN.md §1.4.8): neighbourhoods summed over the atlas's
+surfels, the connected part of the surface inside the ball, each piece counted once."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import uvfeat
+from analytic import range_normalised_error, torus_single, torus_truth, torus_xatlas
+
+
+@pytest.fixture(scope="module")
+def sphere_atlas():
+    s = uvfeat.shapes.uv_sphere(1.0, 96, 48)
+    mesh = uvfeat.Mesh(s.positions, s.faces).with_atlas(cache=False)
+    assert mesh.n_charts > 3
+    return uvfeat.Atlas(mesh, resolution=512)
+
+
+def neighbourhood_areas(atlas, radius, **options):
+    areas = [(tile.areas * tile.valid).sum(1) for tile in
+             atlas.neighbourhoods(radius, samples=256, compute_resolution=48, **options)]
+    return np.concatenate(areas) / (np.pi * radius * radius)
+
+
+def test_the_sphere_cap_is_counted_once_across_the_charts(sphere_atlas):
+    # Archimedes: the sphere inside a ball of radius r centred on it has area pi r^2. The
+    # pattern's developed disk overlaps itself across the seams and counts part of it twice.
+    pattern = neighbourhood_areas(sphere_atlas, 0.6)
+    surfels = neighbourhood_areas(sphere_atlas, 0.6, quadrature="surfels")
+    assert np.median(pattern) > 1.02
+    assert abs(np.median(surfels) - 1.0) < 0.003  # measured 0.9992, p1 0.9982, p99 1.0003
+    assert np.percentile(surfels, 1) > 0.995 and np.percentile(surfels, 99) < 1.005
+
+
+def test_torus_curvatures_against_the_analytic_values():
+    # xatlas's 18-chart torus: at r = 2 % the pattern's H error is 0.78 % and K's 0.38 %; the
+    # surfels' 0.43 % and 0.21 %. A wrong factor or sign in the sums would be tens of percent.
+    mesh = torus_xatlas()
+    h, k, _ = torus_truth(mesh)
+    maps = uvfeat.Atlas(mesh).compute(["mean_curvature", "gaussian_curvature"], "2%", quadrature="surfels")
+    assert range_normalised_error(maps["mean_curvature"].per_vertex(), h) < 0.008
+    assert range_normalised_error(maps["gaussian_curvature"].per_vertex(), k) < 0.005
+    # One stretched chart (surfels five times longer than wide): still within 1.5 % at 4 %.
+    single = torus_single()
+    h, k, _ = torus_truth(single)
+    maps = uvfeat.Atlas(single).compute(["mean_curvature", "gaussian_curvature"], "4%", quadrature="surfels",
+                                        compute_resolution=256)
+    assert range_normalised_error(maps["mean_curvature"].per_vertex(), h) < 0.02
+    assert range_normalised_error(maps["gaussian_curvature"].per_vertex(), k) < 0.015
+
+
+def folded_sheet(gap=0.05, length=1.0, width=0.6, n_length=60, n_fold=12, n_width=36):
+    """A strip folded back on itself: two flat sheets `gap` apart joined by a half cylinder."""
+    flat = np.linspace(0.0, length, n_length, endpoint=False)
+    angles = np.linspace(-np.pi / 2, np.pi / 2, n_fold, endpoint=False)
+    path = np.concatenate([
+        np.stack([flat, np.zeros_like(flat)], 1),
+        np.stack([length + gap / 2 * np.cos(angles), gap / 2 + gap / 2 * np.sin(angles)], 1),
+        np.stack([length - flat, np.full_like(flat, gap)], 1),
+    ])
+    ys = np.linspace(0.0, width, n_width)
+    positions = np.array([[x, y, z] for x, z in path for y in ys])
+    faces = []
+    for a in range(len(path) - 1):
+        for b in range(n_width - 1):
+            v = a * n_width + b
+            faces += [[v, v + n_width, v + 1], [v + 1, v + n_width, v + n_width + 1]]
+    return uvfeat.Mesh(positions, np.array(faces), name="folded sheet").with_atlas(cache=False)
+
+
+def test_a_folded_sheet_counts_the_other_side_only_where_the_fold_joins_them():
+    # Both sheets lie in every ball (gap 0.05 < r = 0.15), but far from the fold the other sheet
+    # is not connected to the centre inside the ball: the converged reference leaves it out, and
+    # so must the surfels (counting it would bend H by ~gap / r^2 towards it).
+    mesh = folded_sheet()
+    radius = 0.15
+    truth = uvfeat.converged_reference(mesh, "mean_curvature", radius, max_levels=1)
+    H = uvfeat.Atlas(mesh, resolution=512).compute("mean_curvature", radius, query="direct",
+                                                   quadrature="surfels", surface="facets")["mean_curvature"]
+    values = H.per_vertex()
+    p = mesh.positions
+    inner = (p[:, 1] > radius) & (p[:, 1] < 0.6 - radius)  # balls not cut by the long borders
+    far = inner & (p[:, 0] < 1.0 - 1.5 * radius) & (p[:, 0] > radius)
+    near = inner & (p[:, 0] > 1.0 - 0.5 * radius)
+    assert far.sum() > 100 and near.sum() > 50
+    # far from the fold: one flat sheet, H = 0 (the other sheet would give |H| ~ 0.05 / 0.15^2 ~ 2)
+    assert np.max(np.abs(values[far])) < 0.05 and np.max(np.abs(truth["mean_curvature"][far])) < 0.05
+    # at the fold both sheets are joined inside the ball and both methods see the bend
+    assert np.median(np.abs(truth["mean_curvature"][near])) > 1.0
+    # measured 0.03 % of the range (the pattern: 0.6 %)
+    assert np.mean(np.abs(values[inner] - truth["mean_curvature"][inner])) < 0.003 * np.ptp(truth["mean_curvature"][inner])
+
+
+def test_same_results_with_one_and_two_threads(tmp_path):
+    script = (
+        "import sys, numpy as np, uvfeat\n"
+        "m = uvfeat.shapes.torus(2.0, 0.5, 64, 32)\n"
+        "maps = uvfeat.Atlas(m, 256).compute(['mean_curvature', 'k1'], 0.3, compute_resolution=64, quadrature='surfels')\n"
+        "np.save(sys.argv[1], np.stack([f.texture for f in maps.values()]))\n"
+    )
+    outputs = []
+    for threads in ("1", "2"):
+        path = tmp_path / f"t{threads}.npy"
+        subprocess.run([sys.executable, "-c", script, str(path)], env=dict(os.environ, RAYON_NUM_THREADS=threads),
+                       check=True)
+        outputs.append(np.load(path))
+    np.testing.assert_array_equal(outputs[0], outputs[1])
+
+
+def test_the_options_are_named_and_checked(sphere_atlas):
+    assert uvfeat.options.DEFAULT_OPTIONS["quadrature"] == "pattern"
+    assert uvfeat.options.CHOICES["quadrature"] == ["pattern", "surfels"]
+    assert uvfeat.options.CHOICES["surface"] == ["smooth", "facets"]
+    with pytest.raises(uvfeat.InvalidParameterError, match="quadrature"):
+        sphere_atlas.compute("mean_curvature", 0.3, quadrature="surfels", adaptive=True)
+    with pytest.raises(uvfeat.InvalidParameterError, match="quadrature"):
+        sphere_atlas.compute("mean_curvature", 0.3, quadrature="surfels", standard_error=True)
+    with pytest.raises(uvfeat.InvalidParameterError, match="surface"):
+        sphere_atlas.compute("mean_curvature", 0.3, surface="facets")
+    with pytest.raises(uvfeat.InvalidParameterError, match="quadrature"):
+        sphere_atlas.compute("mean_curvature", 0.3, quadrature="voxels")
