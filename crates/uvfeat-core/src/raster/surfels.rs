@@ -19,6 +19,15 @@ use rayon::prelude::*;
 /// Levels stop when a texel side holds fewer than this many texels.
 const SMALLEST_LEVEL: usize = 4;
 
+/// Where a surfel is and how much surface it holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfelPoint {
+    /// Area centroid.
+    pub position: DVec3,
+    /// 3D area.
+    pub area: f64,
+}
+
 /// The surfels of one level of the pyramid.
 #[derive(Debug, Clone, Default)]
 pub struct SurfelLevel {
@@ -28,10 +37,8 @@ pub struct SurfelLevel {
     pub texel: Vec<u32>,
     /// Chart of each surfel.
     pub chart: Vec<i32>,
-    /// 3D area.
-    pub area: Vec<f64>,
-    /// Area centroid (on the facets).
-    pub position: Vec<DVec3>,
+    /// Area centroid and 3D area (together: the search reads both of every surfel it reaches).
+    pub point: Vec<SurfelPoint>,
     /// Area-weighted mean of the unit normals, normalised.
     pub normal: Vec<DVec3>,
     /// A mesh border (or non-manifold edge) passes through the surfel.
@@ -139,8 +146,13 @@ impl SurfelLevel {
             width,
             texel: sums.iter().map(|s| s.texel).collect(),
             chart: sums.iter().map(|s| s.chart).collect(),
-            area: sums.iter().map(|s| s.area).collect(),
-            position: sums.iter().map(|s| if s.area > 0.0 { s.moment / s.area } else { DVec3::ZERO }).collect(),
+            point: sums
+                .iter()
+                .map(|s| SurfelPoint {
+                    position: if s.area > 0.0 { s.moment / s.area } else { DVec3::ZERO },
+                    area: s.area,
+                })
+                .collect(),
             normal: sums.iter().map(|s| s.normal.normalize_or_zero()).collect(),
             on_border: vec![false; n],
             ..Default::default()
@@ -207,9 +219,9 @@ impl SurfelLevel {
                 Fragment {
                     texel,
                     chart,
-                    area: self.area[s],
-                    moment: self.position[s] * self.area[s],
-                    normal: self.normal[s] * self.area[s],
+                    area: self.point[s].area,
+                    moment: self.point[s].position * self.point[s].area,
+                    normal: self.normal[s] * self.point[s].area,
                 }
             })
             .collect();
@@ -297,7 +309,7 @@ mod tests {
         let (area, surfels) = torus_surfels(64);
         assert_eq!(surfels.levels.len(), 5); // 64, 32, 16, 8, 4
         for level in &surfels.levels {
-            let total: f64 = level.area.iter().sum();
+            let total: f64 = level.point.iter().map(|p| p.area).sum();
             assert!((total / area - 1.0).abs() < 1e-9, "level {}: {total} vs {area}", level.width);
         }
     }

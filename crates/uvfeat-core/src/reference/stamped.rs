@@ -16,11 +16,6 @@ impl StampedValues {
         Self { value: vec![0.0; len], stamp: vec![0; len], generation: 1, touched: Vec::new() }
     }
 
-    /// Indices it has room for.
-    pub fn len(&self) -> usize {
-        self.stamp.len()
-    }
-
     /// Forgets every value.
     pub fn reset(&mut self) {
         self.generation = self.generation.wrapping_add(1);

@@ -22,8 +22,8 @@ use super::geodesic::arc_distance;
 use super::sample::{Sample, SampleCounts};
 use super::settings::{Criterion, SamplerSettings, Surface};
 use crate::atlas::Atlas;
-use crate::raster::SurfelLevel;
-use crate::reference::StampedValues;
+use crate::raster::{SurfelLevel, SurfelPoint};
+use glam::DVec3;
 use std::cell::RefCell;
 
 /// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level). At 512
@@ -32,7 +32,37 @@ pub const TARGET_SURFELS: f64 = 512.0;
 
 thread_local! {
     /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
-    static REACHED: RefCell<(StampedValues, Vec<u32>)> = RefCell::new((StampedValues::new(0), Vec::new()));
+    static REACHED: RefCell<(Visited, Vec<u32>)> = RefCell::new((Visited::default(), Vec::new()));
+}
+
+/// Surfels a search has reached: a stamp per surfel, forgotten in O(1) by a new generation.
+#[derive(Default)]
+struct Visited {
+    stamp: Vec<u32>,
+    generation: u32,
+}
+
+impl Visited {
+    /// Forgets every surfel; room for `len`.
+    fn reset(&mut self, len: usize) {
+        if self.stamp.len() < len {
+            self.stamp = vec![0; len];
+        }
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.fill(0);
+            self.generation = 1;
+        }
+    }
+
+    /// Marks `s`; `true` the first time since the reset.
+    #[inline]
+    fn first_visit(&mut self, s: u32) -> bool {
+        let stamp = &mut self.stamp[s as usize];
+        let first = *stamp != self.generation;
+        *stamp = self.generation;
+        first
+    }
 }
 
 /// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about
@@ -72,25 +102,21 @@ pub fn gather_surfels(atlas: &Atlas, centre: &Centre, settings: &SamplerSettings
     let (inner, outer) = (edge - width / 2.0, edge + width / 2.0);
     let reach = outer;
     REACHED.with_borrow_mut(|(reached, queue)| {
-        if reached.len() < level.len() {
-            *reached = StampedValues::new(surfels.levels[0].len());
-        }
-        reached.reset();
+        reached.reset(surfels.levels[0].len());
         queue.clear();
-        reached.set(start, 0.0);
+        reached.first_visit(start);
         queue.push(start);
         let mut next = 0;
         while let Some(&s) = queue.get(next) {
             next += 1;
-            let position = level.position[s as usize];
+            let SurfelPoint { position, area } = level.point[s as usize];
             let offset = position - p;
             let distance = offset.length();
             if distance >= reach {
                 continue;
             }
             for &t in level.neighbours(s) {
-                if !reached.contains(t) {
-                    reached.set(t, 0.0);
+                if reached.first_visit(t) {
                     queue.push(t);
                 }
             }
@@ -105,8 +131,8 @@ pub fn gather_surfels(atlas: &Atlas, centre: &Centre, settings: &SamplerSettings
             let ramp = ((outer - distance) / (outer - inner)).min(1.0);
             out.push(Sample {
                 position,
-                normal: level.normal[s as usize],
-                area: level.area[s as usize] * ramp,
+                normal: if settings.with_normals { level.normal[s as usize] } else { DVec3::NAN },
+                area: area * ramp,
                 distance,
                 sin_alpha,
                 geodesic,
