@@ -92,9 +92,9 @@ def cost(name: str, atlas: uvfeat.Atlas, radii) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--meshes", nargs="+", default=["armadillo.obj", "stanford-bunny.obj", "dragon.obj"])
-    parser.add_argument("--radii", nargs="+", type=float, default=[1.0, 3.0, 6.0])
+    parser.add_argument("--radii", nargs="*", type=float, default=[1.0, 3.0, 6.0])
     parser.add_argument("--probe", type=int, default=2000, help="vertices compared (random, seed 0)")
-    parser.add_argument("--quadratures", nargs="+", default=["pattern", "surfels", "surfels/facets"])
+    parser.add_argument("--quadratures", nargs="*", default=["pattern", "surfels", "surfels/facets"])
     parser.add_argument("--cost-radii", nargs="*", type=float, default=[1.0, 2.0, 4.0, 8.0, 16.0])
     args = parser.parse_args()
     folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", pathlib.Path(__file__).parents[1].parent / "shared" / "meshes"))

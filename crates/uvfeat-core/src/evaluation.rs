@@ -125,9 +125,7 @@ pub fn evaluate_point(
     if settings.quadrature == Quadrature::Surfels {
         scratch.clear();
         let counts = gather_surfels(atlas, &centre, &sampler, scratch);
-        let mut stats = NeighbourhoodStats::default();
-        stats.accumulate(scratch, centre.normal, &stats_settings);
-        return fitted_result(&stats, fit_if_asked(settings, &centre, scratch), counts, settings);
+        return surfel_result(settings, &centre, counts, scratch);
     }
     let first = patterns.first.len();
     let (mut counts, reach) =
@@ -176,6 +174,18 @@ pub fn evaluate_point(
         }
     }
     result
+}
+
+/// The features of a neighbourhood summed over surfels (`samples`, DESIGN.md §1.4.8).
+pub(crate) fn surfel_result(
+    settings: &ComputeSettings,
+    centre: &Centre,
+    counts: SampleCounts,
+    samples: &[Sample],
+) -> PixelResult {
+    let mut stats = NeighbourhoodStats::default();
+    stats.accumulate(samples, centre.normal, &settings.stats());
+    fitted_result(&stats, fit_if_asked(settings, centre, samples), counts, settings)
 }
 
 /// The estimates with the fit's directions and residual (when there is a fit).

@@ -13,4 +13,5 @@ mod rasterisation;
 mod reference;
 mod seams;
 mod shared_lattice;
+mod surfels;
 mod unwrap;
