@@ -4,8 +4,7 @@
 use crate::error::{Result, UvfeatError};
 use crate::frame::Frame;
 use crate::mesh::Topology;
-use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision, Surfels};
-use crate::sampling::Surface;
+use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision, Surface, Surfels};
 use glam::{DVec2, DVec3};
 use std::sync::{Arc, OnceLock};
 
@@ -83,9 +82,8 @@ impl Atlas {
     /// The surfel pyramid of the frame on `surface` (DESIGN.md §1.4.8), built on first use by
     /// `quadrature = "surfels"`.
     pub fn surfels(&self, surface: Surface) -> &Surfels {
-        let smooth = surface == Surface::Smooth;
-        self.surfels[usize::from(smooth)]
-            .get_or_init(|| Surfels::build(&self.topology, &self.frame, self.resolution(), smooth))
+        self.surfels[usize::from(surface == Surface::Smooth)]
+            .get_or_init(|| Surfels::build(&self.topology, &self.frame, self.resolution(), surface))
     }
 
     /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, patches; the buffers on

@@ -6,11 +6,11 @@ use crate::features::{
     estimate, fit_relative_error, quadric_fit, relative_standard_error, CurvatureMethod, Feature, NeighbourhoodStats,
     QuadricFit,
 };
+use crate::lookup::Lookup;
 use crate::sampling::{
     centre_at, disk_pattern, gather, gather_covering, gather_surfels, Centre, Placement, Quadrature, Sample,
     SampleCounts, TURNS,
 };
-use crate::lookup::Lookup;
 use crate::settings::ComputeSettings;
 use glam::DVec2;
 

@@ -13,8 +13,8 @@ use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{lattice_statistics, CurvatureMethod, VolumeWeighting};
 use crate::relocation::{walk, Located};
 use crate::sampling::{
-    centre_at, fast_path_applies, grown_reach, Centre, LatticeDomain, LatticeTexel, Overlaps, Placement, Sample,
-    Quadrature, SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
+    centre_at, fast_path_applies, grown_reach, Centre, LatticeDomain, LatticeTexel, Overlaps, Placement, Quadrature,
+    Sample, SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
 use glam::{DVec2, Vec2};

@@ -21,7 +21,13 @@ pub(super) struct Fragment {
 pub(super) type SeamPoints = ((DVec2, i32), (DVec2, i32));
 
 /// The parts of face `f` in each texel of a `width`² grid.
-pub(super) fn face_fragments(topology: &Topology, frame: &Frame, f: usize, width: usize, smooth: bool) -> Vec<Fragment> {
+pub(super) fn face_fragments(
+    topology: &Topology,
+    frame: &Frame,
+    f: usize,
+    width: usize,
+    smooth: bool,
+) -> Vec<Fragment> {
     let chart = topology.face_chart[f];
     let Some(map) = frame.face_map(topology, f as u32) else { return Vec::new() };
     let w = width as f64;
@@ -155,7 +161,6 @@ impl Polygon {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -167,7 +172,8 @@ mod tests {
         let (mut sum, mut moment) = (0.0, DVec2::ZERO);
         for j in 0..3 {
             for i in 0..3 {
-                let (a, c) = triangle.clip(1, j as f64, j as f64 + 1.0).clip(0, i as f64, i as f64 + 1.0).area_centroid();
+                let (a, c) =
+                    triangle.clip(1, j as f64, j as f64 + 1.0).clip(0, i as f64, i as f64 + 1.0).area_centroid();
                 sum += a;
                 moment += c * a;
             }

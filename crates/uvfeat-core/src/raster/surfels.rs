@@ -16,6 +16,17 @@ use crate::mesh::Topology;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+/// Which surface the surfels (and their centres) lie on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Surface {
+    /// The triangle lookup's smooth surface through the vertex normals (DESIGN.md §1.3.6), as the
+    /// pattern's samples (default): closest to a smooth shape the mesh approximates.
+    #[default]
+    Smooth,
+    /// The mesh's own flat facets, as the object-space reference and its refinements measure them.
+    Facets,
+}
+
 /// Levels stop when a texel side holds fewer than this many texels.
 const SMALLEST_LEVEL: usize = 4;
 
@@ -115,7 +126,8 @@ impl SurfelLevel {
                 let (i, j) = level.texel_of(uv);
                 level.at(i, j, chart)
             };
-            let mut pairs: Vec<(u32, u32)> = seams.par_iter().filter_map(|&(a, b)| Some((find(a)?, find(b)?))).collect();
+            let mut pairs: Vec<(u32, u32)> =
+                seams.par_iter().filter_map(|&(a, b)| Some((find(a)?, find(b)?))).collect();
             pairs.par_extend((0..level.len() as u32).into_par_iter().flat_map_iter(move |s| {
                 let (i, j) = level.texel(s);
                 let chart = level.chart[s as usize];
@@ -248,10 +260,10 @@ pub struct Surfels {
 }
 
 impl Surfels {
-    /// Clips every face of the frame to the texels of a `width`² grid and builds the pyramid.
-    /// Centroids lie on the smooth surface of the triangle lookup when `smooth` (DESIGN.md §1.3.6),
-    /// else on the facets.
-    pub fn build(topology: &Topology, frame: &Frame, width: usize, smooth: bool) -> Self {
+    /// Clips every face of the frame to the texels of a `width`² grid and builds the pyramid,
+    /// with centroids on `surface`.
+    pub fn build(topology: &Topology, frame: &Frame, width: usize, surface: Surface) -> Self {
+        let smooth = surface == Surface::Smooth;
         let fragments: Vec<Fragment> = (0..topology.faces.len())
             .into_par_iter()
             .flat_map_iter(|f| face_fragments(topology, frame, f, width, smooth))
@@ -301,7 +313,7 @@ mod tests {
                 (b - a).cross(c - a).length() / 2.0
             })
             .sum();
-        (area, Surfels::build(&topology, &frame, width, false))
+        (area, Surfels::build(&topology, &frame, width, Surface::Facets))
     }
 
     #[test]

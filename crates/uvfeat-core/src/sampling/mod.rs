@@ -31,5 +31,5 @@ pub use pattern::{
 };
 pub use reach::{Reach, DIRECTIONS};
 pub use sample::{Sample, SampleCounts};
-pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath, Surface};
+pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 pub use surfels::{gather_surfels, surfel_level, TARGET_SURFELS};

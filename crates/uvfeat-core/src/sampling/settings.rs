@@ -3,6 +3,7 @@
 
 use super::geodesic::Geodesic;
 use crate::lookup::Lookup;
+use crate::raster::Surface;
 use crate::relocation::Relocation;
 
 /// Which samples belong to the neighbourhood `S(p, r)`.
@@ -73,17 +74,6 @@ pub enum Quadrature {
     /// exact area (`sampling/surfels.rs`): no surface counted twice where the development overlaps
     /// itself, no gaps behind saddles; deterministic, so no adaptive stages or standard errors.
     Surfels,
-}
-
-/// Which surface the surfels (and their centres) lie on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Surface {
-    /// The triangle lookup's smooth surface through the vertex normals (DESIGN.md §1.3.6), as the
-    /// pattern's samples (default): closest to a smooth shape the mesh approximates.
-    #[default]
-    Smooth,
-    /// The mesh's own flat facets, as the object-space reference and its refinements measure them.
-    Facets,
 }
 
 /// Which sampler runs: one lattice of samples shared by a tile of texels, the fast path where it

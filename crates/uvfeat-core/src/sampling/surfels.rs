@@ -20,9 +20,9 @@
 use super::centre::Centre;
 use super::geodesic::arc_distance;
 use super::sample::{Sample, SampleCounts};
-use super::settings::{Criterion, SamplerSettings, Surface};
+use super::settings::{Criterion, SamplerSettings};
 use crate::atlas::Atlas;
-use crate::raster::{SurfelLevel, SurfelPoint};
+use crate::raster::{Surface, SurfelLevel, SurfelPoint};
 use glam::DVec3;
 use std::cell::RefCell;
 
@@ -80,7 +80,12 @@ pub fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius:
 /// Appends the surfels of the ball's connected part around `centre` to `out` as samples
 /// (`pattern_index` is the surfel's index in its level); `border` counts those a mesh border
 /// passes through.
-pub fn gather_surfels(atlas: &Atlas, centre: &Centre, settings: &SamplerSettings, out: &mut Vec<Sample>) -> SampleCounts {
+pub fn gather_surfels(
+    atlas: &Atlas,
+    centre: &Centre,
+    settings: &SamplerSettings,
+    out: &mut Vec<Sample>,
+) -> SampleCounts {
     let surfels = atlas.surfels(settings.surface);
     let k = surfel_level(surfels.levels.len(), atlas.resolution(), centre, settings.radius);
     let level = &surfels.levels[k];

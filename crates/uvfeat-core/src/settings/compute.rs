@@ -4,8 +4,9 @@ use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
 use crate::lookup::Lookup;
+use crate::raster::Surface;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath, Surface};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]

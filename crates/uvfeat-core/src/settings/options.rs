@@ -6,9 +6,9 @@ use super::{ComputeSettings, VertexQuery};
 use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, GaussianMethod, VolumeWeighting};
 use crate::lookup::Lookup;
-use crate::raster::Precision;
+use crate::raster::{Precision, Surface};
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplingPath, Surface};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplingPath};
 
 /// An option whose value is one of a few names.
 pub trait Choice: Copy + PartialEq + Sized + 'static {
