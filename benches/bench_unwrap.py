@@ -32,9 +32,9 @@ REPO = pathlib.Path(__file__).resolve().parents[1]
 # (label, unwrapper). xatlas: ChartOptions / PackOptions overrides; max_cost bounds how far a chart
 # may grow (xatlas's default 2): larger charts mean fewer seams for the samples to cross.
 OPTION_SETS = [
-    ("charts 45° (default)", lambda p, f: chart_uvs(p, f, cache=False)),
-    ("charts 60°", lambda p, f: chart_uvs(p, f, max_angle=60.0, cache=False)),
-    ("charts 75°", lambda p, f: chart_uvs(p, f, max_angle=75.0, cache=False)),
+    ("charts 45° (default)", lambda p, f: chart_uvs(p, f)),
+    ("charts 60°", lambda p, f: chart_uvs(p, f, max_angle=60.0)),
+    ("charts 75°", lambda p, f: chart_uvs(p, f, max_angle=75.0)),
     ("xatlas default", lambda p, f: xatlas_uvs(p, f, cache=False)),
     ("xatlas no chart rotation", lambda p, f: xatlas_uvs(p, f, cache=False, pack_options={"rotate_charts": False})),
     ("xatlas block-aligned packing", lambda p, f: xatlas_uvs(p, f, cache=False, pack_options={"blockAlign": True})),

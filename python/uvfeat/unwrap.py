@@ -4,17 +4,15 @@ Two unwrappers, chosen by ``method`` wherever an atlas is built (:meth:`uvfeat.M
 ``uvfeat.load(uv=...)``, the CLI's ``--uv``):
 
 - ``"charts"`` (default): uvfeat's own normal-cone charts, each projected onto the plane across
-  its cone's axis and checked to be injective as it grows, packed as bitmaps. 0.1-0.35 s for
-  70K-280K faces; the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
+  its cone's axis and checked to be injective as it grows, packed on shelves. About 0.15 s for
+  100K faces; the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
 - ``"xatlas"``: xatlas's optimised charts (fewer, rounder, less stretched; about 20 s for 100K
-  faces on two cores).
-
-An atlas depends only on the mesh and the options, so both are cached on disk, keyed by a hash of
-the positions, the faces, the options and the unwrapper (xatlas's version, or the build of
-uvfeat's extension): a second run on the same mesh reads the atlas back in milliseconds. The cache
-lives in ``$UVFEAT_CACHE_DIR`` (default ``$XDG_CACHE_HOME/uvfeat`` or ``~/.cache/uvfeat``);
-``UVFEAT_CACHE_DIR=off`` or ``cache=False`` turns it off. A cache file that cannot be read is
-ignored and written anew.
+  faces on two cores). Its result depends only on the mesh and the options, so it is cached on
+  disk, keyed by a hash of the positions, the faces, the options and the xatlas version: a second
+  run on the same mesh reads the atlas back in milliseconds. The cache lives in
+  ``$UVFEAT_CACHE_DIR`` (default ``$XDG_CACHE_HOME/uvfeat`` or ``~/.cache/uvfeat``);
+  ``UVFEAT_CACHE_DIR=off`` or ``cache=False`` turns it off. A cache file that cannot be read is
+  ignored and written anew.
 """
 
 from __future__ import annotations
@@ -51,7 +49,7 @@ def cache_dir() -> Path | None:
 
 
 def chart_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 1024, padding: float = 4.0,
-              max_angle: float | None = None, cache: bool = True) -> tuple[np.ndarray, np.ndarray]:
+              max_angle: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Normal-cone charts packed into the unit square (uvfeat's own unwrapper).
 
     Parameters
@@ -63,10 +61,8 @@ def chart_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 102
     padding : float
         Gutter between charts, in texels at ``resolution``.
     max_angle : float, optional
-        Half-angle in degrees of each chart's normal cone, in (0, 90); default 45. Smaller angles
+        Half-angle in degrees of each chart's normal cone, in (0, 90); default 60. Smaller angles
         give more charts with less stretch (at most ``1 / cos(max_angle)``).
-    cache : bool
-        Read and write the on-disk atlas cache (see the module's documentation).
 
     Returns
     -------
@@ -82,16 +78,9 @@ def chart_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 102
     """
     positions = np.ascontiguousarray(positions, dtype=np.float64)
     faces = np.ascontiguousarray(faces, dtype=np.int64)
-    options = (int(resolution), float(padding), None if max_angle is None else float(max_angle))
-
-    def unwrap():
-        uvs, uv_faces, _ = _core.unwrap(positions, faces, resolution=options[0], padding=options[1],
-                                        max_angle=options[2])
-        return uvs, uv_faces
-
-    # The extension's build stands for the unwrapper's version: a rebuilt uvfeat unwraps anew.
-    build = os.stat(_core.__file__)
-    return _cached(positions, faces, ("charts", build.st_size, build.st_mtime_ns, options), cache, unwrap)
+    uvs, uv_faces, _ = _core.unwrap(positions, faces, resolution=int(resolution), padding=float(padding),
+                                    max_angle=None if max_angle is None else float(max_angle))
+    return uvs, uv_faces
 
 
 def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 1024, padding: int = 4,
@@ -129,21 +118,15 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
     chart = {"max_chart_area": float(max_chart_area)} if max_chart_area > 0 else {}
     chart.update(chart_options or {})
     pack = {"resolution": int(resolution), "padding": int(padding), "bilinear": True, **(pack_options or {})}
-    identity = ("xatlas", getattr(xatlas, "__version__", "unknown"), sorted(chart.items()), sorted(pack.items()))
-    return _cached(positions, faces, identity, cache, lambda: _unwrap(xatlas, positions, faces, chart, pack))
-
-
-def _cached(positions: np.ndarray, faces: np.ndarray, identity: tuple, cache: bool, unwrap) -> tuple[np.ndarray, np.ndarray]:
-    """The atlas ``unwrap()`` makes, read from the cache when ``identity`` (unwrapper, version,
-    options) and the mesh are there, else made and written."""
+    options = (sorted(chart.items()), sorted(pack.items()))
     folder = cache_dir() if cache else None
     path = None
     if folder is not None:
-        path = folder / "atlases" / f"{_cache_key(positions, faces, identity)}.npz"
+        path = folder / "atlases" / f"{_cache_key(positions, faces, options, xatlas)}.npz"
         cached = _read_cached(path, len(faces))
         if cached is not None:
             return cached
-    uvs, uv_faces = unwrap()
+    uvs, uv_faces = _unwrap(xatlas, positions, faces, chart, pack)
     if path is not None:
         _write_cached(path, uvs, uv_faces)
     return uvs, uv_faces
@@ -170,9 +153,10 @@ def _options(options, fields: dict):
     return options
 
 
-def _cache_key(positions: np.ndarray, faces: np.ndarray, identity: tuple) -> str:
+def _cache_key(positions: np.ndarray, faces: np.ndarray, options: tuple, xatlas) -> str:
     digest = hashlib.sha256()
-    digest.update(repr((_CACHE_FORMAT, identity, positions.shape, faces.shape)).encode())
+    version = getattr(xatlas, "__version__", "unknown")
+    digest.update(repr((_CACHE_FORMAT, version, options, positions.shape, faces.shape)).encode())
     digest.update(positions.tobytes())
     digest.update(faces.tobytes())
     return digest.hexdigest()
