@@ -1,6 +1,6 @@
 """Fuzzes the core entry points on random arrays: ``Mesh`` (positions, faces, UVs with NaN, Inf,
-huge and out-of-range values), ``Atlas``, ``Atlas.compute``, ``Atlas.locate`` and ``Atlas.update``
-with random parameters, the automatic atlas (``uvfeat.unwrap.chart_uvs``) and the pictures' z-buffer
+huge and out-of-range values), ``Atlas``, ``Atlas.compute`` (both quadratures), ``Atlas.locate`` and
+``Atlas.update`` with random parameters, the automatic atlas (``uvfeat.unwrap.chart_uvs``) and the pictures' z-buffer
 (``uvfeat.render.rasterise``). Run (no corpus needed)::
 
     .venv/bin/python fuzz/fuzz_core.py fuzz/corpus/core -max_total_time=60 -timeout=20
@@ -62,7 +62,8 @@ def run(data: bytes) -> None:
         feature = fdp.PickValueInList(list(FEATURES))
         radius = fdp.PickValueInList(list(RADII))
         atlas.compute(feature, radius, samples=fdp.PickValueInList([4, 16, 64]), compute_resolution=16,
-                      method=fdp.PickValueInList(["integral", "fit"]))
+                      method=fdp.PickValueInList(["integral", "fit"]),
+                      quadrature=fdp.PickValueInList(["pattern", "surfels"]))
         start = tuple(numbers(fdp.ConsumeBytes(16), 2))
         target = tuple(numbers(fdp.ConsumeBytes(16), 2))
         atlas.locate(start, target, max_jumps=fdp.ConsumeIntInRange(0, 40))

@@ -4,8 +4,8 @@ Two unwrappers, chosen by ``method`` wherever an atlas is built (:meth:`uvfeat.M
 ``uvfeat.load(uv=...)``, the CLI's ``--uv``):
 
 - ``"charts"`` (default): uvfeat's own normal-cone charts, each projected onto the plane across
-  its cone's axis and checked to be injective as it grows, packed on shelves. About 0.15 s for
-  100K faces; the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
+  its cone's axis and checked to be injective as it grows, packed as bitmaps. 0.1-0.35 s for
+  70K-280K faces; the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
 - ``"xatlas"``: xatlas's optimised charts (fewer, rounder, less stretched; about 20 s for 100K
   faces on two cores). Its result depends only on the mesh and the options, so it is cached on
   disk, keyed by a hash of the positions, the faces, the options and the xatlas version: a second
@@ -61,7 +61,7 @@ def chart_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 102
     padding : float
         Gutter between charts, in texels at ``resolution``.
     max_angle : float, optional
-        Half-angle in degrees of each chart's normal cone, in (0, 90); default 60. Smaller angles
+        Half-angle in degrees of each chart's normal cone, in (0, 90); default 45. Smaller angles
         give more charts with less stretch (at most ``1 / cos(max_angle)``).
 
     Returns
