@@ -1,6 +1,6 @@
 """Peak memory of a feature computation in a fresh process (issue 15, docs/RELIABILITY.md).
 
-    .venv/bin/python benches/bench_memory.py [--faces 1M,5M] [--resolutions 1024,2048]
+    .venv/bin/python benches/bench_memory.py [--faces 1M,5M] [--resolutions 1024,2048] [--quadrature surfels]
 
 Each cell runs ``uvfeat.compute``'s steps (mesh, Atlas, compute at r = 2 % with a 256² computation
 texture and 64 samples, per-vertex values) on a lat-long torus of about that many faces in a new
@@ -21,12 +21,14 @@ CHILD = """
 import json, resource, sys, time
 import uvfeat
 n_u, n_v, resolution = map(int, sys.argv[1:4])
+quadrature = sys.argv[4]
 started = time.perf_counter()
 shape = uvfeat.shapes.torus(2.0, 0.5, n_u, n_v)
 mesh = uvfeat.Mesh(shape.positions, shape.faces, uvs=shape.uvs, uv_faces=shape.uv_faces)
 del shape
 atlas = uvfeat.Atlas(mesh, resolution)
-values = atlas.compute("mean_curvature", "2%", compute_resolution=256, samples=64)["mean_curvature"].per_vertex()
+values = atlas.compute("mean_curvature", "2%", compute_resolution=256, samples=64,
+                       quadrature=quadrature)["mean_curvature"].per_vertex()
 print(json.dumps({"faces": mesh.n_faces, "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
                   "seconds": time.perf_counter() - started}))
 """
@@ -40,13 +42,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--faces", default="1M,5M")
     parser.add_argument("--resolutions", default="1024,2048")
+    parser.add_argument("--quadrature", default="pattern", choices=("pattern", "surfels"))
     args = parser.parse_args()
     print("| faces | buffers | peak RSS MiB | seconds |")
     print("|---|---|---|---|")
     for faces in map(count, args.faces.split(",")):
         n_v = max(3, round(math.sqrt(faces / 4)))  # 2 n_u n_v faces with n_u = 2 n_v
         for resolution in args.resolutions.split(","):
-            run = subprocess.run([sys.executable, "-c", CHILD, str(2 * n_v), str(n_v), resolution],
+            run = subprocess.run([sys.executable, "-c", CHILD, str(2 * n_v), str(n_v), resolution, args.quadrature],
                                  capture_output=True, text=True)
             if run.returncode != 0:
                 print(f"| {faces:,} | {resolution}² | failed: {run.stderr.strip().splitlines()[-1]} | |", flush=True)
