@@ -21,22 +21,88 @@ pub(super) struct Fragment {
 pub(super) type SeamPoints = ((DVec2, i32), (DVec2, i32));
 
 /// The parts of face `f` in each texel of a `width`² grid.
-pub(super) fn face_fragments(
+/// Texel rows a band of the grid holds: the fragments of one band are summed on their own, so
+/// that the pieces of all faces are never held at once (3 per texel, 64 bytes each).
+const BAND_ROWS: usize = 16;
+
+/// The surfels of a `width`² grid: every face's pieces summed per texel and chart, in texel order
+/// (then chart), band by band in parallel. Within a band the pieces are summed in face order, so
+/// the sums do not depend on the thread count.
+pub(super) fn texel_sums(topology: &Topology, frame: &Frame, width: usize, smooth: bool) -> Vec<Fragment> {
+    let bands = width.div_ceil(BAND_ROWS);
+    let rows: Vec<Option<(usize, usize)>> =
+        (0..topology.faces.len()).into_par_iter().map(|f| face_rows(topology, f, width)).collect();
+    let mut first = vec![0usize; bands + 1];
+    for &(j0, j1) in rows.iter().flatten() {
+        for band in j0 / BAND_ROWS..=j1 / BAND_ROWS {
+            first[band + 1] += 1;
+        }
+    }
+    for band in 0..bands {
+        first[band + 1] += first[band];
+    }
+    let mut faces = vec![0u32; first[bands]];
+    let mut next = first.clone();
+    for (f, &(j0, j1)) in rows.iter().enumerate().filter_map(|(f, r)| Some((f, r.as_ref()?))) {
+        for band in j0 / BAND_ROWS..=j1 / BAND_ROWS {
+            faces[next[band]] = f as u32;
+            next[band] += 1;
+        }
+    }
+    (0..bands)
+        .into_par_iter()
+        .flat_map_iter(|band| {
+            let rows = band * BAND_ROWS..=((band + 1) * BAND_ROWS).min(width) - 1;
+            let mut pieces = Vec::new();
+            for &f in &faces[first[band]..first[band + 1]] {
+                face_fragments(topology, frame, f as usize, width, smooth, rows.clone(), &mut pieces);
+            }
+            pieces.sort_by_key(|p| (p.texel, p.chart));
+            let mut sums: Vec<Fragment> = Vec::new();
+            for piece in pieces {
+                match sums.last_mut() {
+                    Some(sum) if (sum.texel, sum.chart) == (piece.texel, piece.chart) => {
+                        sum.area += piece.area;
+                        sum.moment += piece.moment;
+                        sum.normal += piece.normal;
+                    }
+                    _ => sums.push(piece),
+                }
+            }
+            sums
+        })
+        .collect()
+}
+
+/// The rows of the grid face `f`'s UV triangle spans; `None` off the charts.
+fn face_rows(topology: &Topology, f: usize, width: usize) -> Option<(usize, usize)> {
+    if topology.face_chart[f] < 0 {
+        return None;
+    }
+    let v = topology.corner_uvs(f).map(|uv| uv.y * width as f64);
+    let (lo, hi) = (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
+    (hi >= 0.0 && lo < width as f64).then(|| (lo.floor().max(0.0) as usize, (hi.floor() as usize).min(width - 1)))
+}
+
+/// Appends the parts of face `f` in each texel of rows `rows` of a `width`² grid to `out`.
+fn face_fragments(
     topology: &Topology,
     frame: &Frame,
     f: usize,
     width: usize,
     smooth: bool,
-) -> Vec<Fragment> {
+    rows: std::ops::RangeInclusive<usize>,
+    out: &mut Vec<Fragment>,
+) {
     let chart = topology.face_chart[f];
-    let Some(map) = frame.face_map(topology, f as u32) else { return Vec::new() };
+    let Some(map) = frame.face_map(topology, f as u32) else { return };
     let w = width as f64;
     let corners = topology.corner_uvs(f).map(|uv| uv * w);
     let texel_area = map.area_element / (w * w);
     let (lo, hi) = (corners[0].min(corners[1]).min(corners[2]), corners[0].max(corners[1]).max(corners[2]));
     let (i0, j0) = ((lo.x.floor().max(0.0)) as usize, (lo.y.floor().max(0.0)) as usize);
     let (i1, j1) = ((hi.x.floor() as usize).min(width - 1), (hi.y.floor() as usize).min(width - 1));
-    let mut out = Vec::new();
+    let (j0, j1) = (j0.max(*rows.start()), j1.min(*rows.end()));
     let triangle = Polygon::from(&corners);
     for j in j0..=j1 {
         let row = triangle.clip(1, j as f64, j as f64 + 1.0);
@@ -58,7 +124,6 @@ pub(super) fn face_fragments(
             });
         }
     }
-    out
 }
 
 /// Points sampled every half texel along the chart boundaries: seam points paired with the same

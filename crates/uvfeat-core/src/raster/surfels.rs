@@ -10,7 +10,7 @@
 //! coarse surfels are adjacent where their finer pieces are. At the finest level, surfels of one
 //! chart in neighbouring texels are adjacent, and seams join the surfels on their two sides.
 
-use super::surfel_fragments::{boundary_points, face_fragments, Fragment, SeamPoints};
+use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints};
 use crate::frame::Frame;
 use crate::mesh::Topology;
 use glam::{DVec2, DVec3};
@@ -104,15 +104,9 @@ impl SurfelLevel {
 
     /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
     /// across texel sides and across the seams.
-    fn finest(width: usize, mut fragments: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
-        // Stable: fragments come in face order, so sums do not depend on the thread count.
-        fragments.par_sort_by_key(|f| (f.texel, f.chart));
-        let mut owner = vec![0u32; fragments.len()];
-        for k in 1..fragments.len() {
-            let new = (fragments[k].texel, fragments[k].chart) != (fragments[k - 1].texel, fragments[k - 1].chart);
-            owner[k] = owner[k - 1] + u32::from(new);
-        }
-        let mut level = Self::summed(width, &fragments, &owner);
+    fn finest(width: usize, sums: &[Fragment], seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
+        let owner: Vec<u32> = (0..sums.len() as u32).collect();
+        let mut level = Self::summed(width, sums, &owner);
         level.by_texel = vec![0; width * width + 1];
         for &t in &level.texel {
             level.by_texel[t as usize + 1] += 1;
@@ -264,12 +258,10 @@ impl Surfels {
     /// with centroids on `surface`.
     pub fn build(topology: &Topology, frame: &Frame, width: usize, surface: Surface) -> Self {
         let smooth = surface == Surface::Smooth;
-        let fragments: Vec<Fragment> = (0..topology.faces.len())
-            .into_par_iter()
-            .flat_map_iter(|f| face_fragments(topology, frame, f, width, smooth))
-            .collect();
+        let sums = texel_sums(topology, frame, width, smooth);
         let (seams, borders) = boundary_points(topology, width);
-        let mut levels = vec![SurfelLevel::finest(width, fragments, &seams, &borders)];
+        let mut levels = vec![SurfelLevel::finest(width, &sums, &seams, &borders)];
+        drop(sums);
         while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL) {
             let next = last.coarser();
             levels.push(next);
