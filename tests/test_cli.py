@@ -75,3 +75,21 @@ def test_compute_command_with_the_fit_saves_principal_directions(tmp_path):
     assert (with_segments / "k1_r0p3.png").stat().st_size > 0
     integral = [a if a != "fit" else "integral" for a in args[:-1]] + [str(tmp_path / "bad"), "--directions", "d1"]
     assert main(integral) == 2  # the directions need --method fit
+
+
+def test_compute_and_compare_take_the_surfel_quadrature(tmp_path, capsys):
+    import numpy as np
+
+    path = tmp_path / "ico.obj"
+    trimesh.creation.icosphere(3).export(path)
+    out = tmp_path / "out"
+    args = ["compute", str(path), "--feature", "mean_curvature", "--radius", "0.3", "--resolution", "256",
+            "--compute-resolution", "64", "--quadrature", "surfels", "--surface", "facets", "--out", str(out)]
+    assert main(args) == 0
+    settings = json.loads((out / "summary.json").read_text())["settings"]
+    assert (settings["quadrature"], settings["surface"]) == ("surfels", "facets")
+    assert abs(np.median(np.load(out / "per_vertex_r0p3.npz")["mean_curvature"]) - 1.0) < 0.05
+    assert main(args[:-2] + ["--adaptive", "--out", str(out)]) == 2  # a quadrature without random samples
+    assert "quadrature" in capsys.readouterr().err
+    assert main(["compare", str(path), "--radius", "0.3", "--resolution", "256", "--compute-resolution", "64",
+                 "--quadrature", "surfels", "--truth-levels", "1", "--no-pictures", "--json"]) == 0
