@@ -123,3 +123,28 @@ def test_the_options_are_named_and_checked(sphere_atlas):
         sphere_atlas.compute("mean_curvature", 0.3, surface="facets")
     with pytest.raises(uvfeat.InvalidParameterError, match="quadrature"):
         sphere_atlas.compute("mean_curvature", 0.3, quadrature="voxels")
+    for geodesic in ({"gaussian_method": "geodesic_area"}, {"criterion": "geodesic"}):
+        with pytest.raises(uvfeat.InvalidParameterError, match="quadrature"):
+            sphere_atlas.compute("gaussian_curvature", 0.3, quadrature="surfels", **geodesic)
+
+
+def test_a_plane_disk_weighs_pi_r_squared_with_its_centre():
+    # A flat square, one chart: every inner neighbourhood (the surfel holding the centre included)
+    # holds the disk's area; H and K are 0.
+    n = 60
+    xs, ys = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
+    positions = np.stack([xs.ravel(), ys.ravel(), np.zeros(n * n)], 1)
+    v = np.arange(n * n).reshape(n, n)
+    faces = np.concatenate([np.stack([v[:-1, :-1], v[:-1, 1:], v[1:, :-1]], -1).reshape(-1, 3),
+                            np.stack([v[:-1, 1:], v[1:, 1:], v[1:, :-1]], -1).reshape(-1, 3)])
+    mesh = uvfeat.Mesh(positions, faces, uvs=positions[:, :2], uv_faces=faces)
+    atlas = uvfeat.Atlas(mesh, resolution=256)
+    radius = 0.1
+    areas = neighbourhood_areas(atlas, radius, quadrature="surfels")
+    tiles = list(atlas.neighbourhoods(radius, compute_resolution=48, quadrature="surfels"))
+    inner = np.concatenate([np.all(np.abs(t.centres[:, :2] - 0.5) < 0.5 - radius - 0.01, axis=1) for t in tiles])
+    assert inner.sum() > 500
+    np.testing.assert_allclose(areas[inner], 1.0, atol=2e-3)
+    maps = atlas.compute(["mean_curvature", "gaussian_curvature"], radius, compute_resolution=48, quadrature="surfels")
+    assert np.nanmax(np.abs(maps["mean_curvature"].texture)) < 1e-9
+

@@ -240,7 +240,12 @@ class Atlas:
             ("distance" | "uniform"), ``rho_min`` (0.1, fraction of r), ``flat_tol`` (1e-3),
             ``tau`` (0.01), ``standard_error`` (False), ``query`` ("texture" | "direct"),
             ``method`` ("integral" | "fit": H, K, k1, k2, shape index and curvedness from the
-            quadric fit, which also gives ``principal_directions`` and ``fit_residual``).
+            quadric fit, which also gives ``principal_directions`` and ``fit_residual``),
+            ``overlaps`` ("keep" | "drop"), ``quadrature`` ("pattern": the samples above;
+            "surfels": the atlas's pieces of surface connected to the centre inside the ball, each
+            counted once, for scans cut into many charts; ``samples``, ``adaptive``, the sampler
+            options and the geodesic methods do not apply, DESIGN.md §1.4.8) and ``surface``
+            ("smooth" | "facets": the surface the surfels lie on).
 
         Returns
         -------
@@ -256,7 +261,8 @@ class Atlas:
                        seed: int = ARGUMENT_DEFAULTS["seed"], tile_texels: int = 16384, **options):
         """The weighted neighbourhood samples of every texel, in tiles, for user-defined operators
         ``F(p, S(p))`` (DESIGN.md §2.9). Yields :class:`Neighbourhoods` tuples whose arrays hold
-        ``tile_texels x samples`` samples at most (memory-bounded)."""
+        ``tile_texels x samples`` samples at most (memory-bounded); with
+        ``quadrature="surfels"`` a tile's arrays are as wide as its largest neighbourhood."""
         from .features import compute_maps_settings
 
         settings, resolution = compute_maps_settings(self, radius, samples, compute_resolution, seed, options)

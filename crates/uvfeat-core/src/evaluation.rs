@@ -8,8 +8,8 @@ use crate::features::{
 };
 use crate::lookup::Lookup;
 use crate::sampling::{
-    centre_at, disk_pattern, gather, gather_covering, gather_surfels, Centre, Placement, Quadrature, Sample,
-    SampleCounts, TURNS,
+    centre_at, disk_pattern, gather, gather_covering, gather_surfels, surfel_centre, Centre, Placement, Quadrature,
+    Sample, SampleCounts, TURNS,
 };
 use crate::settings::ComputeSettings;
 use glam::DVec2;
@@ -123,6 +123,7 @@ pub fn evaluate_point(
     let stats_settings = settings.stats();
     let estimators = settings.estimators();
     if settings.quadrature == Quadrature::Surfels {
+        let Some(centre) = surfel_centre(atlas, &centre, settings.surface) else { return PixelResult::EMPTY };
         scratch.clear();
         let counts = gather_surfels(atlas, &centre, &sampler, scratch);
         return surfel_result(settings, &centre, counts, scratch);
@@ -177,12 +178,7 @@ pub fn evaluate_point(
 }
 
 /// The features of a neighbourhood summed over surfels (`samples`, DESIGN.md §1.4.8).
-pub(crate) fn surfel_result(
-    settings: &ComputeSettings,
-    centre: &Centre,
-    counts: SampleCounts,
-    samples: &[Sample],
-) -> PixelResult {
+fn surfel_result(settings: &ComputeSettings, centre: &Centre, counts: SampleCounts, samples: &[Sample]) -> PixelResult {
     let mut stats = NeighbourhoodStats::default();
     stats.accumulate(samples, centre.normal, &settings.stats());
     fitted_result(&stats, fit_if_asked(settings, centre, samples), counts, settings)

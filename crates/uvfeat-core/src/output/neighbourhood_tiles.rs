@@ -4,7 +4,8 @@
 use crate::atlas::Atlas;
 use crate::evaluation::prepare;
 use crate::sampling::{
-    centre_at, disk_pattern, gather_covering, gather_surfels, Placement, Quadrature, Sample, SamplerSettings,
+    centre_at, disk_pattern, gather_covering, gather_surfels, surfel_centre, Placement, Quadrature, Sample,
+    SamplerSettings,
 };
 use crate::settings::ComputeSettings;
 use glam::DVec2;
@@ -50,9 +51,10 @@ pub fn neighbourhood_tile(
         .filter_map(|t| {
             let (i, j) = (t % w, t / w);
             let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
-            let centre = centre_at(atlas, uv, settings.lookup)?;
+            let mut centre = centre_at(atlas, uv, settings.lookup)?;
             let mut samples = Vec::with_capacity(n);
             if settings.quadrature == Quadrature::Surfels {
+                centre = surfel_centre(atlas, &centre, settings.surface)?;
                 gather_surfels(atlas, &centre, &sampler, &mut samples);
             } else {
                 let placement = Placement::of_pixel(i as u32, j as u32, settings.seed);

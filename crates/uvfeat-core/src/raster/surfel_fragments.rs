@@ -20,7 +20,6 @@ pub(super) struct Fragment {
 /// The same seam point seen from its two faces: parametric point and chart on each side.
 pub(super) type SeamPoints = ((DVec2, i32), (DVec2, i32));
 
-/// The parts of face `f` in each texel of a `width`² grid.
 /// Texel rows a band of the grid holds: the fragments of one band are summed on their own, so
 /// that the pieces of all faces are never held at once (3 per texel, 64 bytes each).
 const BAND_ROWS: usize = 16;
@@ -109,12 +108,13 @@ fn face_fragments(
         for i in i0..=i1 {
             let piece = row.clip(0, i as f64, i as f64 + 1.0);
             let (uv_area, centroid) = piece.area_centroid();
-            if !(uv_area > 0.0) {
+            // No 3D area (a face collapsed in space but not in UV): nothing to sum, and no centroid.
+            let area = uv_area * texel_area;
+            if !(area > 0.0) {
                 continue;
             }
             let uv = centroid / w;
             let position = if smooth { map.smooth_position(uv) } else { map.position(uv) };
-            let area = uv_area * texel_area;
             out.push(Fragment {
                 texel: (j * width + i) as u32,
                 chart,

@@ -6,9 +6,10 @@
 //!
 //! A pyramid merges 2 x 2 texels per level, so that a neighbourhood of any radius can be summed
 //! over a few hundred surfels. A coarse surfel is one *connected* piece of a chart in its texel:
-//! two arms of a chart that meet in a coarse texel, or the two sides of a slit, stay apart, and
-//! coarse surfels are adjacent where their finer pieces are. At the finest level, surfels of one
-//! chart in neighbouring texels are adjacent, and seams join the surfels on their two sides.
+//! two arms of a chart that meet in a coarse texel, or the two sides of a slit, stay apart (when
+//! at least a finest texel apart), and coarse surfels are adjacent where their finer pieces are. At
+//! the finest level, surfels of one chart in side-adjacent texels are adjacent (parts of a chart
+//! closer than a texel in UV are joined), and seams join the surfels on their two sides.
 
 use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints};
 use crate::frame::Frame;
@@ -27,7 +28,7 @@ pub enum Surface {
     Facets,
 }
 
-/// Levels stop when a texel side holds fewer than this many texels.
+/// The coarsest level has at most this many texels per side.
 const SMALLEST_LEVEL: usize = 4;
 
 /// Where a surfel is and how much surface it holds.
@@ -275,14 +276,6 @@ impl Surfels {
             s = l.parent[s as usize];
         }
         s
-    }
-
-    /// Bytes held.
-    pub fn bytes(&self) -> usize {
-        self.levels
-            .iter()
-            .map(|l| l.len() * 73 + l.adjacent_first.len() * 4 + l.adjacent.len() * 4 + l.by_texel.len() * 4)
-            .sum()
     }
 }
 

@@ -32,4 +32,4 @@ pub use pattern::{
 pub use reach::{Reach, DIRECTIONS};
 pub use sample::{Sample, SampleCounts};
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
-pub use surfels::{gather_surfels, surfel_level, TARGET_SURFELS};
+pub use surfels::{gather_surfels, surfel_centre};

@@ -77,9 +77,23 @@ pub fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius:
     (widest.max(0.0) as usize).min(n_levels.saturating_sub(1))
 }
 
-/// Appends the surfels of the ball's connected part around `centre` to `out` as samples
-/// (`pattern_index` is the surfel's index in its level); `border` counts those a mesh border
-/// passes through.
+/// The centre the surfels of `surface` are measured from: `centre` itself on the smooth surface,
+/// moved onto its face's facet for `Surface::Facets` (where the lookup's lift would put it up to
+/// `h^2 k / 8` off the facets, moving H by `4 delta / r^2`).
+pub fn surfel_centre(atlas: &Atlas, centre: &Centre, surface: Surface) -> Option<Centre> {
+    match surface {
+        Surface::Smooth => Some(*centre),
+        Surface::Facets => {
+            let map = atlas.frame.face_map(&atlas.topology, centre.home.face)?;
+            Some(Centre { position: map.position(centre.home.point), ..*centre })
+        }
+    }
+}
+
+/// Appends the surfels of the ball's connected part around `centre` (see [`surfel_centre`]) to
+/// `out` as samples (`pattern_index` is the surfel's index in its level); `border` counts those in
+/// the ball that a mesh border passes through (the neighbourhood is truncated). A ball narrower
+/// than the finest surfels holds none: the features are NaN there.
 pub fn gather_surfels(
     atlas: &Atlas,
     centre: &Centre,
@@ -93,19 +107,12 @@ pub fn gather_surfels(
     let Some(start) = start_surfel(&surfels.levels[0], centre) else { return counts };
     let start = surfels.ancestor(start, k);
     let r = settings.radius;
-    let p = match settings.surface {
-        Surface::Smooth => centre.position,
-        Surface::Facets => {
-            let Some(map) = atlas.frame.face_map(&atlas.topology, centre.home.face) else { return counts };
-            map.position(centre.home.point)
-        }
-    };
+    let p = centre.position;
     // One surfel width in object units at the centre.
     let width = centre.distortion.area_element().sqrt() * (1u64 << k) as f64 / atlas.resolution() as f64;
     let width = width.min(0.5 * r);
     let edge = (r * r - width * width / 12.0).sqrt();
     let (inner, outer) = (edge - width / 2.0, edge + width / 2.0);
-    let reach = outer;
     REACHED.with_borrow_mut(|(reached, queue)| {
         reached.reset(surfels.levels[0].len());
         queue.clear();
@@ -117,7 +124,7 @@ pub fn gather_surfels(
             let SurfelPoint { position, area } = level.point[s as usize];
             let offset = position - p;
             let distance = offset.length();
-            if distance >= reach {
+            if distance >= outer {
                 continue;
             }
             for &t in level.neighbours(s) {
@@ -125,10 +132,8 @@ pub fn gather_surfels(
                     queue.push(t);
                 }
             }
-            if distance >= outer || distance <= 1e-6 * r {
-                continue;
-            }
-            let sin_alpha = centre.normal.dot(offset) / distance;
+            // The surfel holding the centre keeps its area (its elevation is 0 there).
+            let sin_alpha = if distance > 1e-6 * r { centre.normal.dot(offset) / distance } else { 0.0 };
             let geodesic = if settings.with_geodesic { arc_distance(distance, sin_alpha) } else { f64::NAN };
             if settings.criterion == Criterion::Geodesic && geodesic >= r {
                 continue;

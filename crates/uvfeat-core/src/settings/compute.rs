@@ -129,6 +129,15 @@ impl ComputeSettings {
                     .into(),
             );
         }
+        if self.quadrature == Quadrature::Surfels && self.sampler().with_geodesic {
+            // The surfels' ramp across the ball's edge would enter the geodesic disk's area.
+            return invalid(
+                "quadrature",
+                "\"surfels\" serves the Euclidean ball: the geodesic criterion and gaussian_method=\
+                 \"geodesic_area\" (paper mode's) need quadrature=\"pattern\""
+                    .into(),
+            );
+        }
         if self.surface == Surface::Facets && self.quadrature != Quadrature::Surfels {
             return invalid("surface", "\"facets\" is a choice of quadrature=\"surfels\"".into());
         }
