@@ -29,6 +29,24 @@ def charts_icosphere() -> uvfeat.Mesh:
 
 
 @functools.lru_cache(maxsize=None)
+def charts_sphere_atlas() -> uvfeat.Atlas:
+    """The 96 x 48 lat-long sphere re-atlased into uvfeat's own charts (512² buffers): seams all
+    round a convex surface, where a developed sampling domain overlaps itself."""
+    s = uvfeat.shapes.uv_sphere(1.0, 96, 48)
+    mesh = uvfeat.Mesh(s.positions, s.faces).with_atlas(cache=False)
+    assert mesh.n_charts > 3
+    return uvfeat.Atlas(mesh, resolution=512)
+
+
+def neighbourhood_areas(atlas: uvfeat.Atlas, radius: float, **options) -> np.ndarray:
+    """Each texel's neighbourhood area (48² texels, 256 samples) over pi r^2: 1 on a sphere
+    (Archimedes: the sphere inside a ball of radius r centred on it has area pi r^2)."""
+    areas = [(tile.areas * tile.valid).sum(1) for tile in
+             atlas.neighbourhoods(radius, samples=256, compute_resolution=48, **options)]
+    return np.concatenate(areas) / (np.pi * radius * radius)
+
+
+@functools.lru_cache(maxsize=None)
 def torus_single() -> uvfeat.Mesh:
     return uvfeat.shapes.torus(2.0, 0.5, 256, 128)
 

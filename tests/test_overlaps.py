@@ -7,25 +7,17 @@ import numpy as np
 import pytest
 
 import uvfeat
+from analytic import charts_sphere_atlas, neighbourhood_areas
 
 
 @pytest.fixture(scope="module")
 def sphere_atlas():
-    s = uvfeat.shapes.uv_sphere(1.0, 96, 48)
-    mesh = uvfeat.Mesh(s.positions, s.faces).with_atlas(cache=False)
-    assert mesh.n_charts > 3
-    return uvfeat.Atlas(mesh, resolution=512)
-
-
-def sampled_areas(atlas, radius, **options):
-    areas = [(tile.areas * tile.valid).sum(1) for tile in
-             atlas.neighbourhoods(radius, samples=256, compute_resolution=48, **options)]
-    return np.concatenate(areas) / (np.pi * radius * radius)
+    return charts_sphere_atlas()
 
 
 def test_overlapping_routes_count_twice_unless_dropped(sphere_atlas):
-    kept = sampled_areas(sphere_atlas, 0.6)
-    dropped = sampled_areas(sphere_atlas, 0.6, overlaps="drop")
+    kept = neighbourhood_areas(sphere_atlas, 0.6)
+    dropped = neighbourhood_areas(sphere_atlas, 0.6, overlaps="drop")
     assert np.median(kept) > 1.02, "the developed domain overlaps itself across seams"
     assert abs(np.median(dropped) - 1.0) < 0.01
     assert np.percentile(dropped, 90) < np.percentile(kept, 90) - 0.02

@@ -9,21 +9,13 @@ import numpy as np
 import pytest
 
 import uvfeat
-from analytic import range_normalised_error, torus_single, torus_truth, torus_xatlas
+from analytic import (charts_sphere_atlas, neighbourhood_areas, range_normalised_error, torus_single, torus_truth,
+                      torus_xatlas)
 
 
 @pytest.fixture(scope="module")
 def sphere_atlas():
-    s = uvfeat.shapes.uv_sphere(1.0, 96, 48)
-    mesh = uvfeat.Mesh(s.positions, s.faces).with_atlas(cache=False)
-    assert mesh.n_charts > 3
-    return uvfeat.Atlas(mesh, resolution=512)
-
-
-def neighbourhood_areas(atlas, radius, **options):
-    areas = [(tile.areas * tile.valid).sum(1) for tile in
-             atlas.neighbourhoods(radius, samples=256, compute_resolution=48, **options)]
-    return np.concatenate(areas) / (np.pi * radius * radius)
+    return charts_sphere_atlas()
 
 
 def test_the_sphere_cap_is_counted_once_across_the_charts(sphere_atlas):

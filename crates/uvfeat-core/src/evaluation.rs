@@ -120,14 +120,14 @@ pub fn evaluate_point(
         return PixelResult::EMPTY;
     };
     let sampler = settings.sampler();
-    let stats_settings = settings.stats();
-    let estimators = settings.estimators();
     if settings.quadrature == Quadrature::Surfels {
         let Some(centre) = surfel_centre(atlas, &centre, settings.surface) else { return PixelResult::EMPTY };
         scratch.clear();
         let counts = gather_surfels(atlas, &centre, &sampler, scratch);
         return surfel_result(settings, &centre, counts, scratch);
     }
+    let stats_settings = settings.stats();
+    let estimators = settings.estimators();
     let first = patterns.first.len();
     let (mut counts, reach) =
         gather_covering(atlas, &centre, &patterns.first, placement, &sampler, settings.grow_margin, scratch);

@@ -38,6 +38,7 @@ pub mod relocation;
 pub mod sampling;
 pub mod settings;
 pub mod shapes;
+pub mod stamps;
 pub mod tile_evaluation;
 pub mod unwrap;
 

@@ -11,16 +11,10 @@
 //! moments need one `1 / rho^2`.
 
 use super::statistics::{NeighbourhoodStats, StatsSettings, WeightedSums};
-use crate::sampling::{LatticeDomain, LatticeTexel, SampleCounts, TileLattice};
+use crate::sampling::{ramp_centre, LatticeDomain, LatticeTexel, SampleCounts, TileLattice};
 
 /// Width of the ball's edge ramp, in lattice cells (see `lattice_statistics`).
 const RAMP: f32 = 2.0;
-
-/// Where a ramp `width` wide (in units of `r`) is centred so that it weighs a disk of radius `r`
-/// exactly: a linear ramp centred at `c` covers `pi (c^2 + width^2 / 12)`.
-fn ramp_centre(width: f32) -> f32 {
-    (1.0 - width * width / 12.0).sqrt()
-}
 
 /// Points summed at once (one AVX2 register of f32).
 const LANES: usize = TileLattice::PADDING;
@@ -98,7 +92,7 @@ pub fn lattice_statistics(
         rho_min2: rho_min * rho_min,
         inverse_radius: 1.0 / r,
         inverse_radius2: 1.0 / (r * r),
-        ramp_end: r * (ramp_centre(RAMP * lattice.spacing) + 0.5 * RAMP * lattice.spacing),
+        ramp_end: r * (ramp_centre(f64::from(RAMP * lattice.spacing)) as f32 + 0.5 * RAMP * lattice.spacing),
         inverse_ramp_width: 1.0 / (r * RAMP * lattice.spacing),
         shift: curvature_shift as f32,
     };

@@ -87,14 +87,17 @@ impl SurfelLevel {
         ((uv.x * w).floor() as i64, (uv.y * w).floor() as i64)
     }
 
-    /// Finest level only: the surfel of `chart` in texel `(i, j)`, if that texel holds part of it.
-    pub fn at(&self, i: i64, j: i64, chart: i32) -> Option<u32> {
+    /// Finest level only: the surfel of `chart` in texel `t` (`j * width + i`), if that texel holds
+    /// part of it.
+    pub fn at(&self, t: usize, chart: i32) -> Option<u32> {
+        let range = self.by_texel.get(t..t + 2)?;
+        (range[0]..range[1]).find(|&s| self.chart[s as usize] == chart)
+    }
+
+    /// The texel `j * width + i` of texel `(i, j)`, `None` off the grid.
+    pub fn texel_index(&self, (i, j): (i64, i64)) -> Option<usize> {
         let w = self.width as i64;
-        if i < 0 || j < 0 || i >= w || j >= w || self.by_texel.is_empty() {
-            return None;
-        }
-        let t = (j * w + i) as usize;
-        (self.by_texel[t]..self.by_texel[t + 1]).find(|&s| self.chart[s as usize] == chart)
+        (i >= 0 && j >= 0 && i < w && j < w).then(|| (j * w + i) as usize)
     }
 
     /// Surfels adjacent to `s` on the surface.
@@ -117,16 +120,16 @@ impl SurfelLevel {
         }
         let (pairs, on_border) = {
             let level = &level;
-            let find = |(uv, chart): (DVec2, i32)| {
-                let (i, j) = level.texel_of(uv);
-                level.at(i, j, chart)
-            };
+            let find =
+                |(uv, chart): (DVec2, i32)| level.texel_index(level.texel_of(uv)).and_then(|t| level.at(t, chart));
             let mut pairs: Vec<(u32, u32)> =
                 seams.par_iter().filter_map(|&(a, b)| Some((find(a)?, find(b)?))).collect();
             pairs.par_extend((0..level.len() as u32).into_par_iter().flat_map_iter(move |s| {
                 let (i, j) = level.texel(s);
                 let chart = level.chart[s as usize];
-                [(1, 0), (0, 1)].into_iter().filter_map(move |(di, dj)| Some((s, level.at(i + di, j + dj, chart)?)))
+                [(1, 0), (0, 1)]
+                    .into_iter()
+                    .filter_map(move |(di, dj)| Some((s, level.at(level.texel_index((i + di, j + dj))?, chart)?)))
             }));
             (pairs, borders.iter().filter_map(|&point| find(point)).collect::<Vec<u32>>())
         };
@@ -317,11 +320,11 @@ mod tests {
         // surfels in the first column link to surfels in the last.
         let (_, surfels) = torus_surfels(64);
         let level = &surfels.levels[0];
-        let row: Vec<i64> = (0..64).filter(|&i| level.at(i, 20, 0).is_some()).collect();
+        let row: Vec<i64> = (0..64).filter(|&i| level.at(20 * 64 + i as usize, 0).is_some()).collect();
         let (left, right) = (row[0], row[row.len() - 1]);
         assert!(right - left > 56, "{row:?}");
         let across: Vec<(i64, i64)> =
-            level.neighbours(level.at(left, 20, 0).unwrap()).iter().map(|&s| level.texel(s)).collect();
+            level.neighbours(level.at(20 * 64 + left as usize, 0).unwrap()).iter().map(|&s| level.texel(s)).collect();
         assert!(across.iter().any(|&(i, j)| i == right && (j - 20).abs() <= 1), "{across:?}");
         assert!(level.on_border.iter().all(|&b| !b));
     }

@@ -30,6 +30,6 @@ pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,
 };
 pub use reach::{Reach, DIRECTIONS};
-pub use sample::{Sample, SampleCounts};
+pub use sample::{ramp_centre, Sample, SampleCounts};
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 pub use surfels::{gather_surfels, surfel_centre};

@@ -70,6 +70,13 @@ pub fn is_inside(distance: f64, sin_alpha: f64, settings: &SamplerSettings) -> b
     }
 }
 
+/// Where a linear ramp `width` wide across the ball's edge (both in units of `r`) is centred so
+/// that it weighs a disk of radius `r` exactly: a ramp centred at `c` covers `pi (c^2 + width^2 /
+/// 12)` (the shared lattice's edge, DESIGN.md §1.4.7, and the surfels', §1.4.8).
+pub fn ramp_centre(width: f64) -> f64 {
+    (1.0 - width * width / 12.0).sqrt()
+}
+
 /// A surface point reached by one pattern sample, before the ball test.
 pub struct Candidate {
     /// The surface point `q`.

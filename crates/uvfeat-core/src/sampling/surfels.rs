@@ -19,55 +19,26 @@
 
 use super::centre::Centre;
 use super::geodesic::arc_distance;
-use super::sample::{Sample, SampleCounts};
+use super::sample::{ramp_centre, Sample, SampleCounts};
 use super::settings::{Criterion, SamplerSettings};
 use crate::atlas::Atlas;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
+use crate::stamps::Stamps;
 use glam::DVec3;
 use std::cell::RefCell;
 
 /// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level). At 512
 /// the quadrature's error is a few tenths of a percent of H's range on the shared scans.
-pub const TARGET_SURFELS: f64 = 512.0;
+const TARGET_SURFELS: f64 = 512.0;
 
 thread_local! {
     /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
-    static REACHED: RefCell<(Visited, Vec<u32>)> = RefCell::new((Visited::default(), Vec::new()));
-}
-
-/// Surfels a search has reached: a stamp per surfel, forgotten in O(1) by a new generation.
-#[derive(Default)]
-struct Visited {
-    stamp: Vec<u32>,
-    generation: u32,
-}
-
-impl Visited {
-    /// Forgets every surfel; room for `len`.
-    fn reset(&mut self, len: usize) {
-        if self.stamp.len() < len {
-            self.stamp = vec![0; len];
-        }
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.stamp.fill(0);
-            self.generation = 1;
-        }
-    }
-
-    /// Marks `s`; `true` the first time since the reset.
-    #[inline]
-    fn first_visit(&mut self, s: u32) -> bool {
-        let stamp = &mut self.stamp[s as usize];
-        let first = *stamp != self.generation;
-        *stamp = self.generation;
-        first
-    }
+    static REACHED: RefCell<(Stamps, Vec<u32>)> = RefCell::new((Stamps::new(0), Vec::new()));
 }
 
 /// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about
 /// [`TARGET_SURFELS`] in the ball at the centre's area element.
-pub fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius: f64) -> usize {
+fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius: f64) -> usize {
     // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
     // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
     // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
@@ -104,19 +75,19 @@ pub fn gather_surfels(
     let k = surfel_level(surfels.levels.len(), atlas.resolution(), centre, settings.radius);
     let level = &surfels.levels[k];
     let mut counts = SampleCounts::default();
-    let Some(start) = start_surfel(&surfels.levels[0], centre) else { return counts };
+    let Some(start) = start_surfel(atlas, &surfels.levels[0], centre) else { return counts };
     let start = surfels.ancestor(start, k);
     let r = settings.radius;
     let p = centre.position;
     // One surfel width in object units at the centre.
     let width = centre.distortion.area_element().sqrt() * (1u64 << k) as f64 / atlas.resolution() as f64;
     let width = width.min(0.5 * r);
-    let edge = (r * r - width * width / 12.0).sqrt();
+    let edge = r * ramp_centre(width / r);
     let (inner, outer) = (edge - width / 2.0, edge + width / 2.0);
     REACHED.with_borrow_mut(|(reached, queue)| {
         reached.reset(surfels.levels[0].len());
         queue.clear();
-        reached.first_visit(start);
+        reached.insert(start);
         queue.push(start);
         let mut next = 0;
         while let Some(&s) = queue.get(next) {
@@ -128,7 +99,7 @@ pub fn gather_surfels(
                 continue;
             }
             for &t in level.neighbours(s) {
-                if reached.first_visit(t) {
+                if reached.insert(t) {
                     queue.push(t);
                 }
             }
@@ -157,19 +128,7 @@ pub fn gather_surfels(
 
 /// The finest surfel of the centre's chart in the centre's texel, or in the nearest of its eight
 /// neighbours (the centre of a gutter texel lies just off its chart).
-fn start_surfel(level: &SurfelLevel, centre: &Centre) -> Option<u32> {
-    let (i, j) = level.texel_of(centre.uv);
-    if let Some(s) = level.at(i, j, centre.chart) {
-        return Some(s);
-    }
-    let w = level.width as f64;
-    (-1..=1)
-        .flat_map(|dj| (-1..=1).map(move |di| (di, dj)))
-        .filter_map(|(di, dj)| {
-            let s = level.at(i + di, j + dj, centre.chart)?;
-            let texel_centre = glam::DVec2::new((i + di) as f64 + 0.5, (j + dj) as f64 + 0.5) / w;
-            Some((texel_centre.distance_squared(centre.uv), s))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, s)| s)
+fn start_surfel(atlas: &Atlas, level: &SurfelLevel, centre: &Centre) -> Option<u32> {
+    let texel = atlas.nearest_texel(centre.uv, |t| level.at(t, centre.chart).is_some())?;
+    level.at(texel, centre.chart)
 }
