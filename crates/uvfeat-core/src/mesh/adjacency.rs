@@ -3,6 +3,7 @@
 //! chart boundary to the side whose transition map carries the walk on).
 
 use super::sides::BoundarySide;
+use super::vertex_sort::sort_by_vertex;
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -78,7 +79,7 @@ pub(crate) fn face_links(faces: &[[u32; 3]], face_chart: &[i32], sides: &[Bounda
         links[side.face as usize][side.local as usize] = EdgeLink::Side(i as u32);
     }
     // Interior edges: sort the half-edges by their undirected key and pair the neighbours.
-    let mut half_edges: Vec<(u64, u32, u8)> = faces
+    let half_edges: Vec<(u64, u32, u8)> = faces
         .par_iter()
         .enumerate()
         .filter(|&(f, _)| face_chart[f] >= 0)
@@ -90,7 +91,7 @@ pub(crate) fn face_links(faces: &[[u32; 3]], face_chart: &[i32], sides: &[Bounda
             })
         })
         .collect();
-    half_edges.par_sort_unstable();
+    let half_edges = sort_by_vertex(&half_edges, |&(key, ..)| (key >> 32) as u32);
     for pair in half_edges.chunk_by(|x, y| x.0 == y.0) {
         if let [(_, f, k), (_, g, l)] = *pair {
             links[f as usize][k as usize] = EdgeLink::Face { face: g, local: l };

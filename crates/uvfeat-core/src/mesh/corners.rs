@@ -1,6 +1,7 @@
 //! Atlas corners: the face corners that are one point of the atlas (same geometric vertex, same
 //! UV, hence same chart). Per-corner averages of per-face quantities live on these groups.
 
+use super::vertex_sort::sort_by_vertex;
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -13,7 +14,7 @@ pub(crate) fn corner_groups(
     corner_uvs: &[[DVec2; 3]],
     face_chart: &[i32],
 ) -> (Vec<[u32; 3]>, usize) {
-    let mut corners: Vec<(u32, u64, u64, u32)> = faces
+    let corners: Vec<(u32, u64, u64, u32)> = faces
         .par_iter()
         .zip(corner_uvs)
         .enumerate()
@@ -22,7 +23,7 @@ pub(crate) fn corner_groups(
             (0..3).map(move |k| (tri[k], uv[k].x.to_bits(), uv[k].y.to_bits(), (f * 3 + k) as u32))
         })
         .collect();
-    corners.par_sort_unstable();
+    let corners = sort_by_vertex(&corners, |corner| corner.0);
     let mut groups = vec![[NO_CORNER; 3]; faces.len()];
     let mut n_groups = 0;
     for group in corners.chunk_by(|x, y| (x.0, x.1, x.2) == (y.0, y.1, y.2)) {

@@ -1,5 +1,6 @@
 //! Edge classes (DESIGN.md §1.2.4): every geometric edge is interior, seam, border or non-manifold.
 
+use super::vertex_sort::sort_by_vertex;
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -49,7 +50,7 @@ pub(crate) struct EdgeClasses {
 /// Every half-edge `(k, k + 1)` of every face as `(key, 3 f + k)`, sorted: the key is the edge's
 /// two vertices, lower first, so the half-edges of one edge come together.
 pub(crate) fn sorted_half_edges(faces: &[[u32; 3]]) -> Vec<(u64, u32)> {
-    let mut keyed: Vec<(u64, u32)> = faces
+    let keyed: Vec<(u64, u32)> = faces
         .par_iter()
         .enumerate()
         .flat_map_iter(|(f, t)| {
@@ -59,8 +60,7 @@ pub(crate) fn sorted_half_edges(faces: &[[u32; 3]]) -> Vec<(u64, u32)> {
             })
         })
         .collect();
-    keyed.par_sort_unstable();
-    keyed
+    sort_by_vertex(&keyed, |&(key, _)| (key >> 32) as u32)
 }
 
 /// Classifies the edges of `faces` (geometric vertex ids), skipping `degenerate` faces.
@@ -68,43 +68,35 @@ pub(crate) fn sorted_half_edges(faces: &[[u32; 3]]) -> Vec<(u64, u32)> {
 /// Two faces are UV-continuous across an edge when both endpoints carry the same UV (compared
 /// exactly) on both sides (DESIGN.md §1.2.2–§1.2.3).
 pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], degenerate: &[bool]) -> EdgeClasses {
-    let mut sides: Vec<(u64, FaceSide)> = faces
-        .par_iter()
-        .enumerate()
-        .flat_map_iter(|(f, tri)| {
-            (0..3u8).map(move |local| {
-                let (a, b) = (tri[local as usize], tri[(local as usize + 1) % 3]);
-                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-                (key, FaceSide { face: f as u32, local })
-            })
-        })
-        .collect();
-    sides.par_sort_unstable_by_key(|(key, side)| (*key, side.face, side.local));
-
+    let side = |half_edge: u32| FaceSide { face: half_edge / 3, local: (half_edge % 3) as u8 };
+    let sides = sorted_half_edges(faces);
     let mut classes = EdgeClasses { interior_pairs: Vec::new(), boundary: Vec::new(), counts: EdgeCounts::default() };
     for group in sides.chunk_by(|x, y| x.0 == y.0) {
-        let live: Vec<FaceSide> = group.iter().map(|(_, s)| *s).filter(|s| !degenerate[s.face as usize]).collect();
-        let had_degenerate = live.len() < group.len();
-        match live.as_slice() {
-            [] => {}
-            [only] => {
+        let mut live = group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
+        let (x, y, z) = (live.next(), live.next(), live.next());
+        let n_live = usize::from(x.is_some()) + usize::from(y.is_some()) + usize::from(z.is_some());
+        let had_degenerate = n_live < group.len().min(3);
+        match (x, y, z) {
+            (None, ..) => {}
+            (Some(only), None, _) => {
                 let kind = if had_degenerate { SideKind::DegenerateNeighbour } else { SideKind::Border };
                 classes.counts.border += 1;
-                classes.boundary.push((*only, kind));
+                classes.boundary.push((only, kind));
             }
-            [x, y] if !had_degenerate => {
-                if uv_continuous(faces, corner_uvs, *x, *y) {
+            (Some(x), Some(y), None) if !had_degenerate => {
+                if uv_continuous(faces, corner_uvs, x, y) {
                     classes.counts.interior += 1;
                     classes.interior_pairs.push((x.face, y.face));
                 } else {
                     classes.counts.seam += 1;
-                    classes.boundary.push((*x, SideKind::Seam { other_face: y.face, other_local: y.local }));
-                    classes.boundary.push((*y, SideKind::Seam { other_face: x.face, other_local: x.local }));
+                    classes.boundary.push((x, SideKind::Seam { other_face: y.face, other_local: y.local }));
+                    classes.boundary.push((y, SideKind::Seam { other_face: x.face, other_local: x.local }));
                 }
             }
-            many => {
+            _ => {
                 classes.counts.non_manifold += 1;
-                classes.boundary.extend(many.iter().map(|s| (*s, SideKind::NonManifold)));
+                let many = group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
+                classes.boundary.extend(many.map(|s| (s, SideKind::NonManifold)));
             }
         }
     }

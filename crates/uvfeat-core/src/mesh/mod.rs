@@ -11,6 +11,7 @@ mod normals;
 mod sides;
 mod topology;
 mod transition;
+mod vertex_sort;
 mod weld;
 
 pub use adjacency::{EdgeLink, WalkFace};

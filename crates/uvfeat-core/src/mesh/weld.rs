@@ -4,7 +4,7 @@
 //! those splits, or every seam would look like a mesh border.
 
 use glam::DVec3;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// Maps every input vertex to a geometric vertex id.
 ///
@@ -17,7 +17,7 @@ pub fn weld_positions(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize) 
     if tolerance > 0.0 {
         weld_with_tolerance(positions, tolerance)
     } else {
-        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(positions.len());
+        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity_and_hasher(positions.len(), Default::default());
         let ids = positions
             .iter()
             .map(|p| {
@@ -37,7 +37,7 @@ fn exact_key(p: DVec3) -> [u64; 3] {
 /// Grid hashing with cells of the tolerance's size: candidates are in the 27 surrounding cells.
 fn weld_with_tolerance(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize) {
     let cell = |p: DVec3| (p / tolerance).floor().as_i64vec3().to_array();
-    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::default();
     for (v, p) in positions.iter().enumerate() {
         grid.entry(cell(*p)).or_default().push(v as u32);
     }
@@ -60,7 +60,7 @@ fn weld_with_tolerance(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize)
         }
     }
     let mut ids = vec![0u32; positions.len()];
-    let mut numbering: HashMap<u32, u32> = HashMap::new();
+    let mut numbering: HashMap<u32, u32> = HashMap::default();
     for (v, id) in ids.iter_mut().enumerate() {
         let root = find(&mut parent, v as u32);
         let next = numbering.len() as u32;

@@ -72,6 +72,7 @@ impl Coverage {
         let distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
         coverage.chart_distance = Blocked::from_rows(&distance, resolution, 0);
         let interior_face: Vec<u32> = (0..n)
+            .into_par_iter()
             .map(|t| {
                 let interior = distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
                 u32::try_from(coverage.face[t]).ok().filter(|_| interior).unwrap_or(u32::MAX)
@@ -179,61 +180,69 @@ impl Coverage {
 const INTERIOR_DISTANCE: u16 = 2;
 
 /// Two-pass chamfer transform (exact for the Chebyshev metric with 8-neighbour propagation) from
-/// the border texels and the texels next to another chart.
+/// the border texels and the texels next to another chart. Row by row: a row takes its three
+/// neighbours in the previous row at once (vectorised), then its left neighbour in a scan.
 fn chart_distance(chart: &[i32], border_side: &[i32], r: usize) -> Vec<u16> {
     let mut d = vec![u16::MAX; r * r];
-    let neighbours = |i: usize, j: usize| {
-        [(-1i64, -1i64), (0, -1), (1, -1), (-1, 0), (1, 0), (-1, 1), (0, 1), (1, 1)]
-            .into_iter()
-            .map(move |(di, dj)| (i as i64 + di, j as i64 + dj))
-    };
-    for j in 0..r {
-        for i in 0..r {
-            let c = chart[j * r + i];
-            let edge = neighbours(i, j).any(|(x, y)| {
-                x < 0 || y < 0 || x >= r as i64 || y >= r as i64 || chart[y as usize * r + x as usize] != c
-            });
+    d.par_chunks_mut(r).enumerate().for_each(|(j, row)| {
+        let charts = |y: Option<usize>| y.filter(|&y| y < r).map(|y| &chart[y * r..(y + 1) * r]);
+        let (above, own, below) = (charts(j.checked_sub(1)), &chart[j * r..(j + 1) * r], charts(Some(j + 1)));
+        for (i, d) in row.iter_mut().enumerate() {
+            let c = own[i];
+            let differs = |line: Option<&[i32]>| {
+                line.is_none_or(|line| line[i.saturating_sub(1)..(i + 2).min(r)].iter().any(|&x| x != c))
+            };
+            let edge = i == 0 || i + 1 == r || own[i - 1] != c || own[i + 1] != c || differs(above) || differs(below);
             if edge || border_side[j * r + i] >= 0 {
-                d[j * r + i] = 1;
+                *d = 1;
             }
         }
-    }
-    let relax = |d: &mut [u16], t: usize, from: usize| d[t] = d[t].min(d[from].saturating_add(1));
+    });
     for j in 0..r {
-        for i in 0..r {
-            let t = j * r + i;
-            if i > 0 {
-                relax(&mut d, t, t - 1);
-            }
-            if j > 0 {
-                relax(&mut d, t, t - r);
-                if i > 0 {
-                    relax(&mut d, t, t - r - 1);
-                }
-                if i + 1 < r {
-                    relax(&mut d, t, t - r + 1);
-                }
-            }
+        let (done, rest) = d.split_at_mut(j * r);
+        let row = &mut rest[..r];
+        if j > 0 {
+            take_from_row(row, &done[(j - 1) * r..]);
         }
+        scan(row.iter_mut());
     }
     for j in (0..r).rev() {
-        for i in (0..r).rev() {
-            let t = j * r + i;
-            if i + 1 < r {
-                relax(&mut d, t, t + 1);
-            }
-            if j + 1 < r {
-                relax(&mut d, t, t + r);
-                if i + 1 < r {
-                    relax(&mut d, t, t + r + 1);
-                }
-                if i > 0 {
-                    relax(&mut d, t, t + r - 1);
-                }
-            }
+        let (head, below) = d.split_at_mut((j + 1) * r);
+        let row = &mut head[j * r..];
+        if j + 1 < r {
+            take_from_row(row, &below[..r]);
         }
+        scan(row.iter_mut().rev());
     }
     d
+}
+
+/// A chamfer pass's step along a row: each texel takes the one before it (the running value
+/// stays in a register).
+fn scan<'a>(row: impl Iterator<Item = &'a mut u16>) {
+    let mut running = u16::MAX;
+    for d in row {
+        running = (*d).min(running.saturating_add(1));
+        *d = running;
+    }
+}
+
+/// A chamfer pass's step between rows: every texel of `row` takes its three neighbours in the
+/// `done` row (above in the forward pass, below in the backward one), which no longer changes.
+fn take_from_row(row: &mut [u16], done: &[u16]) {
+    let n = row.len();
+    let step = |d: &mut u16, near: u16| *d = (*d).min(near.saturating_add(1));
+    if n < 3 {
+        let nearest = done[..n].iter().copied().min().unwrap_or(u16::MAX);
+        row.iter_mut().for_each(|d| step(d, nearest));
+        return;
+    }
+    step(&mut row[0], done[0].min(done[1]));
+    step(&mut row[n - 1], done[n - 2].min(done[n - 1]));
+    let (left, centre, right) = (&done[..n - 2], &done[1..n - 1], &done[2..]);
+    for (i, d) in row[1..n - 1].iter_mut().enumerate() {
+        step(d, left[i].min(centre[i]).min(right[i]));
+    }
 }
 
 #[cfg(test)]
@@ -254,5 +263,38 @@ mod tests {
         assert_eq!(d[2 * r + 2], 3);
         assert_eq!(d[6 * r + 2], 1); // a boundary touches it
         assert_eq!(d[6 * r + 3], 2); // 3 without that boundary
+    }
+
+    #[test]
+    fn chart_distance_equals_a_brute_force_search() {
+        let r = 37;
+        let mut state = 7u32;
+        let mut next = |n: u32| {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (state >> 8) % n
+        };
+        // Blocks of charts with a few scattered texels of other charts and boundaries.
+        let mut chart: Vec<i32> = (0..r * r).map(|t| ((t % r) / 13 + 3 * ((t / r) / 11)) as i32).collect();
+        for _ in 0..15 {
+            chart[next((r * r) as u32) as usize] = 99;
+        }
+        let border_side: Vec<i32> = (0..r * r).map(|_| if next(60) == 0 { 0 } else { -1 }).collect();
+        let at = |i: i64, j: i64| (0..r as i64).contains(&i) && (0..r as i64).contains(&j);
+        let seed = |i: i64, j: i64| {
+            let c = chart[j as usize * r + i as usize];
+            border_side[j as usize * r + i as usize] >= 0
+                || (-1..=1).any(|dj| {
+                    (-1..=1).any(|di| !at(i + di, j + dj) || chart[(j + dj) as usize * r + (i + di) as usize] != c)
+                })
+        };
+        let seeds: Vec<(i64, i64)> =
+            (0..r as i64).flat_map(|j| (0..r as i64).map(move |i| (i, j))).filter(|&(i, j)| seed(i, j)).collect();
+        let d = chart_distance(&chart, &border_side, r);
+        for j in 0..r as i64 {
+            for i in 0..r as i64 {
+                let nearest = seeds.iter().map(|&(x, y)| (x - i).abs().max((y - j).abs())).min().unwrap();
+                assert_eq!(i64::from(d[j as usize * r + i as usize]), nearest + 1, "texel ({i}, {j})");
+            }
+        }
     }
 }
