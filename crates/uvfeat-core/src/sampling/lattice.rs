@@ -202,6 +202,7 @@ impl TileLattice {
         // the centre outwards (L1 order), so that the neighbour one cell towards the centre has
         // been located and its route can be continued.
         let mut routes: Vec<Option<Route>> = vec![None; (columns * rows) as usize];
+        let mut given_up = vec![false; (columns * rows) as usize];
         let mut crossing = Vec::new();
         for cell in (0..rows).flat_map(|b| (0..columns).map(move |a| IVec2::new(a, b))) {
             let w = place(cell);
@@ -221,8 +222,17 @@ impl TileLattice {
             } else {
                 IVec2::new(0, towards_centre.y.signum())
             };
-            let from = routes[index(cell + step)].map(|route| (route, place(cell + step)));
-            routes[index(cell)] = lattice.locate(atlas, plane, place(cell), from, cell_uv_area, settings);
+            let (w, nearer) = (place(cell), index(cell + step));
+            // Past a point whose walk gave up (out of seam jumps: round a pole's fan of seams),
+            // the route would only go farther: no walk from the centre either.
+            let located = if given_up[nearer] {
+                Located::Missing
+            } else {
+                let from = routes[nearer].map(|route| (route, place(cell + step)));
+                Self::locate(atlas, plane, w, from, settings)
+            };
+            given_up[index(cell)] = located == Located::Missing;
+            routes[index(cell)] = lattice.keep(atlas, w, located, cell_uv_area, settings);
         }
         lattice.sort();
         lattice.pad(settings);
@@ -255,20 +265,17 @@ impl TileLattice {
         self.keep(atlas, w, inside, uv_area, settings)
     }
 
-    /// Locates the lattice point `w` off the centre's chart interior and keeps its surface point:
-    /// it continues the route of `from`, its neighbour one cell towards the centre, by one lattice
-    /// step (a walk of a face or so instead of one from the centre), or walks from the centre when
-    /// the neighbour has no route. Returns the point's own route.
+    /// Locates the lattice point `w` off the centre's chart interior: it continues the route of
+    /// `from`, its neighbour one cell towards the centre, by one lattice step (a walk of a face or
+    /// so instead of one from the centre), or walks from the centre when the neighbour has no route.
     fn locate(
-        &mut self,
         atlas: &Atlas,
         plane: &TilePlane,
         w: Vec2,
         from: Option<(Route, Vec2)>,
-        uv_area: f64,
         settings: &SamplerSettings,
-    ) -> Option<Route> {
-        let located = match from {
+    ) -> Located {
+        match from {
             Some((route, w_from)) => {
                 // The relocation of a target from the neighbour's point, in the chart its route
                 // reached: the interior shortcut, else the walk.
@@ -283,8 +290,7 @@ impl TileLattice {
                 }
             }
             None => locate_target(atlas, &plane.centre, plane.uv(w), settings),
-        };
-        self.keep(atlas, w, located, uv_area, settings)
+        }
     }
 
     /// Keeps the surface point of the lattice point `w` located at `located` (or counts it lost)
