@@ -109,16 +109,19 @@ impl FeatureMaps {
             })
             .flatten_iter()
             .collect();
-        let mut pixels = vec![PixelResult::EMPTY; w * w];
-        for (&t, result) in tiles.iter().flatten().zip(results) {
-            pixels[t] = result;
+        // The results by texel, as references: moving the 120-byte results into texel order took
+        // a tenth of a 200K-face torus's features.
+        let mut slot = vec![0; w * w];
+        for (k, &t) in tiles.iter().flatten().enumerate() {
+            slot[t] = k;
         }
-        let chart = (0..w * w).map(|t| atlas.chart_at(texel_uv(t, w))).collect();
-        Ok(Self::assemble(pixels, chart, settings))
+        let pixels: Vec<&PixelResult> = slot.par_iter().map(|&k| &results[k]).collect();
+        let chart = (0..w * w).into_par_iter().map(|t| atlas.chart_at(texel_uv(t, w))).collect();
+        Ok(Self::assemble(&pixels, chart, settings))
     }
 
-    fn assemble(pixels: Vec<PixelResult>, chart: Vec<i32>, settings: &ComputeSettings) -> Self {
-        let pick = |f: &dyn Fn(&PixelResult) -> f32| pixels.iter().map(f).collect::<Vec<f32>>();
+    fn assemble(pixels: &[&PixelResult], chart: Vec<i32>, settings: &ComputeSettings) -> Self {
+        let pick = |f: &(dyn Fn(&PixelResult) -> f32 + Sync)| pixels.par_iter().map(|p| f(p)).collect::<Vec<f32>>();
         let values = settings.features.iter().map(|feat| pick(&|p| p.values[feat.index()])).collect();
         let standard_errors = settings
             .standard_errors
@@ -126,7 +129,7 @@ impl FeatureMaps {
         let fitted = settings.method == CurvatureMethod::Fit;
         let directions = fitted.then(|| pixels.iter().map(|p| p.directions).collect());
         let fit_residual = fitted.then(|| pick(&|p| p.residual));
-        let evaluated: Vec<&PixelResult> = pixels.iter().filter(|p| p.counts.valid > 0).collect();
+        let evaluated: Vec<&PixelResult> = pixels.iter().copied().filter(|p| p.counts.valid > 0).collect();
         let n = evaluated.len().max(1) as f64;
         let drawn: u64 = evaluated.iter().map(|p| u64::from(p.counts.valid + p.counts.missing + p.counts.border)).sum();
         let summary = MapSummary {
@@ -144,10 +147,10 @@ impl FeatureMaps {
             values,
             standard_errors,
             chart,
-            n_valid: pixels.iter().map(|p| p.counts.valid).collect(),
-            n_missing: pixels.iter().map(|p| p.counts.missing).collect(),
-            n_border: pixels.iter().map(|p| p.counts.border).collect(),
-            second_stage: pixels.iter().map(|p| p.second_stage).collect(),
+            n_valid: pixels.par_iter().map(|p| p.counts.valid).collect(),
+            n_missing: pixels.par_iter().map(|p| p.counts.missing).collect(),
+            n_border: pixels.par_iter().map(|p| p.counts.border).collect(),
+            second_stage: pixels.par_iter().map(|p| p.second_stage).collect(),
             directions,
             fit_residual,
             area_ratio: pick(&|p| p.area_ratio),
