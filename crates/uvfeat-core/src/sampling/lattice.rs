@@ -223,15 +223,18 @@ impl TileLattice {
                 IVec2::new(0, towards_centre.y.signum())
             };
             let (w, nearer) = (place(cell), index(cell + step));
-            // Past a point whose walk gave up (out of seam jumps: round a pole's fan of seams),
-            // the route would only go farther: no walk from the centre either.
+            // Past a point that even a walk from the centre could not reach (out of seam jumps:
+            // round a pole's fan of seams), the walk would only go farther: no walk at all.
             let located = if given_up[nearer] {
                 Located::Missing
             } else {
                 let from = routes[nearer].map(|route| (route, place(cell + step)));
-                Self::locate(atlas, plane, w, from, settings)
+                let from_centre = from.is_none();
+                let located = Self::locate(atlas, plane, w, from, settings);
+                given_up[index(cell)] = from_centre && located == Located::Missing;
+                located
             };
-            given_up[index(cell)] = located == Located::Missing;
+            given_up[index(cell)] |= given_up[nearer];
             routes[index(cell)] = lattice.keep(atlas, w, located, cell_uv_area, settings);
         }
         lattice.sort();
