@@ -2,8 +2,8 @@
 //! triangle walk of the relocation follows them (inside a chart to the neighbouring face, at a
 //! chart boundary to the side whose transition map carries the walk on).
 
+use super::edges::FaceSide;
 use super::sides::BoundarySide;
-use super::vertex_sort::sort_by_vertex;
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -70,33 +70,21 @@ pub(crate) fn walk_faces(corner_uvs: &[[DVec2; 3]], links: &[[EdgeLink; 3]]) -> 
     corner_uvs.par_iter().zip(links).map(|(&corners, &links)| WalkFace::new(corners, links)).collect()
 }
 
-/// The links of every face, from its geometric vertex ids, its chart (`-1` = degenerate, no links)
-/// and the boundary sides; every other edge of a charted face is shared by exactly two faces of
-/// the same chart (that is what made it interior).
-pub(crate) fn face_links(faces: &[[u32; 3]], face_chart: &[i32], sides: &[BoundarySide]) -> Vec<[EdgeLink; 3]> {
-    let mut links = vec![[EdgeLink::Closed; 3]; faces.len()];
+/// The links of every face: across its interior edges (the two sides of each, from the edge
+/// classes) to the face on the other side, across its boundary sides to the side; closed where
+/// the face has no chart.
+pub(crate) fn face_links(
+    n_faces: usize,
+    interior_pairs: &[(FaceSide, FaceSide)],
+    sides: &[BoundarySide],
+) -> Vec<[EdgeLink; 3]> {
+    let mut links = vec![[EdgeLink::Closed; 3]; n_faces];
     for (i, side) in sides.iter().enumerate() {
         links[side.face as usize][side.local as usize] = EdgeLink::Side(i as u32);
     }
-    // Interior edges: sort the half-edges by their undirected key and pair the neighbours.
-    let half_edges: Vec<(u64, u32, u8)> = faces
-        .par_iter()
-        .enumerate()
-        .filter(|&(f, _)| face_chart[f] >= 0)
-        .flat_map_iter(|(f, tri)| {
-            let side_edges = links[f];
-            (0..3u8).filter(move |&k| side_edges[k as usize] == EdgeLink::Closed).map(move |k| {
-                let (a, b) = (tri[k as usize], tri[(k as usize + 1) % 3]);
-                ((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), f as u32, k)
-            })
-        })
-        .collect();
-    let half_edges = sort_by_vertex(&half_edges, |&(key, ..)| (key >> 32) as u32);
-    for pair in half_edges.chunk_by(|x, y| x.0 == y.0) {
-        if let [(_, f, k), (_, g, l)] = *pair {
-            links[f as usize][k as usize] = EdgeLink::Face { face: g, local: l };
-            links[g as usize][l as usize] = EdgeLink::Face { face: f, local: k };
-        }
+    for &(x, y) in interior_pairs {
+        links[x.face as usize][x.local as usize] = EdgeLink::Face { face: y.face, local: y.local };
+        links[y.face as usize][y.local as usize] = EdgeLink::Face { face: x.face, local: x.local };
     }
     links
 }

@@ -7,9 +7,13 @@ use super::weld::{find, union};
 ///
 /// # Returns
 /// `(face_chart, n_charts)`.
-pub(crate) fn chart_ids(n_faces: usize, interior_pairs: &[(u32, u32)], excluded: &[bool]) -> (Vec<i32>, usize) {
+pub(crate) fn chart_ids(
+    n_faces: usize,
+    interior_pairs: impl IntoIterator<Item = (u32, u32)>,
+    excluded: &[bool],
+) -> (Vec<i32>, usize) {
     let mut parent: Vec<u32> = (0..n_faces as u32).collect();
-    for &(a, b) in interior_pairs {
+    for (a, b) in interior_pairs {
         union(&mut parent, a, b);
     }
     let mut root_chart = vec![-1i32; n_faces];
@@ -36,7 +40,7 @@ mod tests {
 
     #[test]
     fn components_are_numbered_in_face_order() {
-        let (charts, n) = chart_ids(5, &[(3, 4), (0, 2)], &[false, false, false, false, true]);
+        let (charts, n) = chart_ids(5, [(3, 4), (0, 2)], &[false, false, false, false, true]);
         assert_eq!(charts, vec![0, 1, 0, 2, -1]);
         assert_eq!(n, 3);
     }

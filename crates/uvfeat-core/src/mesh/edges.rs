@@ -40,8 +40,8 @@ pub struct EdgeCounts {
 
 /// The result of classifying every edge of the mesh.
 pub(crate) struct EdgeClasses {
-    /// Pairs of faces joined by a UV-continuous (interior) edge; they belong to the same chart.
-    pub interior_pairs: Vec<(u32, u32)>,
+    /// The two sides of every UV-continuous (interior) edge; their faces belong to the same chart.
+    pub interior_pairs: Vec<(FaceSide, FaceSide)>,
     /// Chart-boundary sides and what lies across each.
     pub boundary: Vec<(FaceSide, SideKind)>,
     pub counts: EdgeCounts,
@@ -86,7 +86,7 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
             (Some(x), Some(y), None) if !had_degenerate => {
                 if uv_continuous(faces, corner_uvs, x, y) {
                     classes.counts.interior += 1;
-                    classes.interior_pairs.push((x.face, y.face));
+                    classes.interior_pairs.push((x, y));
                 } else {
                     classes.counts.seam += 1;
                     classes.boundary.push((x, SideKind::Seam { other_face: y.face, other_local: y.local }));

@@ -78,9 +78,10 @@ impl Topology {
             return Err(UvfeatError::AllUvDegenerate { faces: faces.len() });
         }
         let classes = classify_edges(&faces, &corner_uvs, &excluded);
-        let (face_chart, n_charts) = chart_ids(faces.len(), &classes.interior_pairs, &excluded);
+        let pairs = classes.interior_pairs.iter().map(|(x, y)| (x.face, y.face));
+        let (face_chart, n_charts) = chart_ids(faces.len(), pairs, &excluded);
         let sides = boundary_sides(&classes.boundary, &face_chart);
-        let walk_faces = walk_faces(&corner_uvs, &face_links(&faces, &face_chart, &sides));
+        let walk_faces = walk_faces(&corner_uvs, &face_links(faces.len(), &classes.interior_pairs, &sides));
         let (corner_groups, n_corners) = corner_groups(&faces, &corner_uvs, &face_chart);
         let mirrored_uv_faces =
             corner_uvs.iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();
