@@ -21,15 +21,13 @@ import sys
 import time
 import warnings
 
-import numpy as np
-
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "peers"))
 
 import surfaces  # noqa: E402
+from methods import FEATURES, uvfeat_mesh  # noqa: E402
 
 import uvfeat  # noqa: E402
 
-FEATURES = ["mean_curvature", "gaussian_curvature"]
 STAGES = ("mesh", "topology", "atlas", "features", "per_vertex")
 
 
@@ -37,14 +35,10 @@ def run_once(surface: surfaces.Surface, radius: float) -> dict[str, float]:
     """Seconds per stage of one `uvfeat.compute` equivalent."""
     times = {}
     started = time.perf_counter()
-    mesh = uvfeat.Mesh(*(np.array(a) for a in (surface.positions, surface.faces, surface.uvs, surface.uv_faces)))
+    mesh = uvfeat_mesh(surface)
     times["mesh"] = time.perf_counter() - started
-    started = time.perf_counter()
-    _ = mesh.topology
-    times["topology"] = time.perf_counter() - started
-    started = time.perf_counter()
     atlas = uvfeat.Atlas(mesh, resolution=1024)
-    times["atlas"] = time.perf_counter() - started - atlas.timings["preprocessing_s"]
+    times["topology"], times["atlas"] = atlas.timings["preprocessing_s"], atlas.timings["rasterisation_s"]
     started = time.perf_counter()
     maps = atlas.compute(FEATURES, radius)
     times["features"] = time.perf_counter() - started
@@ -59,7 +53,7 @@ def run_once(surface: surfaces.Surface, radius: float) -> dict[str, float]:
 def reference_once(surface: surfaces.Surface, radius: float) -> float:
     from uvfeat import reference
 
-    mesh = uvfeat.Mesh(*(np.array(a) for a in (surface.positions, surface.faces, surface.uvs, surface.uv_faces)))
+    mesh = uvfeat_mesh(surface)
     started = time.perf_counter()
     reference.compute(mesh, FEATURES, radius=radius)
     return time.perf_counter() - started

@@ -46,7 +46,7 @@ def _missing(module: str) -> Callable[[], Optional[str]]:
 FEATURES = ["mean_curvature", "gaussian_curvature"]
 
 
-def _uvfeat_mesh(surface: Surface):
+def uvfeat_mesh(surface: Surface):
     import uvfeat
     # Copies: uvfeat.Mesh marks the arrays it is given read-only, which would break later users.
     return uvfeat.Mesh(*(np.array(a) for a in (surface.positions, surface.faces, surface.uvs, surface.uv_faces)))
@@ -60,7 +60,7 @@ def uvfeat_options(**options) -> Callable[[Surface, float], tuple]:
     """uvfeat.compute with the given options (the defaults when none)."""
     def run(surface: Surface, radius: float) -> tuple:
         import uvfeat
-        return _uvfeat_values(uvfeat.compute(_uvfeat_mesh(surface), FEATURES, radius=radius, **options))
+        return _uvfeat_values(uvfeat.compute(uvfeat_mesh(surface), FEATURES, radius=radius, **options))
     return run
 
 
@@ -81,7 +81,7 @@ def uvfeat_option_probe(**options) -> Callable[[], Optional[str]]:
 
 def uvfeat_reference(surface: Surface, radius: float) -> tuple:
     from uvfeat import reference
-    return _uvfeat_values(reference.compute(_uvfeat_mesh(surface), FEATURES, radius=radius))
+    return _uvfeat_values(reference.compute(uvfeat_mesh(surface), FEATURES, radius=radius))
 
 
 def _reference_probe() -> Optional[str]:

@@ -69,21 +69,21 @@ pub(crate) fn sorted_half_edges(faces: &[[u32; 3]]) -> Vec<(u64, u32)> {
 /// exactly) on both sides (DESIGN.md §1.2.2–§1.2.3).
 pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], degenerate: &[bool]) -> EdgeClasses {
     let side = |half_edge: u32| FaceSide { face: half_edge / 3, local: (half_edge % 3) as u8 };
-    let sides = sorted_half_edges(faces);
+    let half_edges = sorted_half_edges(faces);
     let mut classes = EdgeClasses { interior_pairs: Vec::new(), boundary: Vec::new(), counts: EdgeCounts::default() };
-    for group in sides.chunk_by(|x, y| x.0 == y.0) {
-        let mut live = group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
-        let (x, y, z) = (live.next(), live.next(), live.next());
-        let n_live = usize::from(x.is_some()) + usize::from(y.is_some()) + usize::from(z.is_some());
-        let had_degenerate = n_live < group.len().min(3);
-        match (x, y, z) {
-            (None, ..) => {}
-            (Some(only), None, _) => {
+    for group in half_edges.chunk_by(|x, y| x.0 == y.0) {
+        let live = || group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
+        let n_live = live().count();
+        let mut sides = live();
+        match (n_live, n_live < group.len()) {
+            (0, _) => {}
+            (1, had_degenerate) => {
                 let kind = if had_degenerate { SideKind::DegenerateNeighbour } else { SideKind::Border };
                 classes.counts.border += 1;
-                classes.boundary.push((only, kind));
+                classes.boundary.extend(sides.map(|only| (only, kind)));
             }
-            (Some(x), Some(y), None) if !had_degenerate => {
+            (2, false) => {
+                let (Some(x), Some(y)) = (sides.next(), sides.next()) else { continue };
                 if uv_continuous(faces, corner_uvs, x, y) {
                     classes.counts.interior += 1;
                     classes.interior_pairs.push((x, y));
@@ -95,8 +95,7 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
             }
             _ => {
                 classes.counts.non_manifold += 1;
-                let many = group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
-                classes.boundary.extend(many.map(|s| (s, SideKind::NonManifold)));
+                classes.boundary.extend(sides.map(|s| (s, SideKind::NonManifold)));
             }
         }
     }

@@ -225,16 +225,10 @@ impl TileLattice {
             let (w, nearer) = (place(cell), index(cell + step));
             // Past a point that even a walk from the centre could not reach (out of seam jumps:
             // round a pole's fan of seams), the walk would only go farther: no walk at all.
-            let located = if given_up[nearer] {
-                Located::Missing
-            } else {
-                let from = routes[nearer].map(|route| (route, place(cell + step)));
-                let from_centre = from.is_none();
-                let located = Self::locate(atlas, plane, w, from, settings);
-                given_up[index(cell)] = from_centre && located == Located::Missing;
-                located
-            };
-            given_up[index(cell)] |= given_up[nearer];
+            let from = routes[nearer].map(|route| (route, place(cell + step)));
+            let located =
+                if given_up[nearer] { Located::Missing } else { Self::locate(atlas, plane, w, from, settings) };
+            given_up[index(cell)] = given_up[nearer] || (from.is_none() && located == Located::Missing);
             routes[index(cell)] = lattice.keep(atlas, w, located, cell_uv_area, settings);
         }
         lattice.sort();
