@@ -117,43 +117,144 @@ impl FeatureMaps {
         }
         let pixels: Vec<&PixelResult> = slot.par_iter().map(|&k| &results[k]).collect();
         let chart = (0..w * w).into_par_iter().map(|t| atlas.chart_at(texel_uv(t, w))).collect();
-        Ok(Self::assemble(&pixels, chart, settings))
+        // One pass over the results, band by band: a pass per column read the 120-byte results
+        // again each time (50 ms of a 200K-face torus's 0.35 s).
+        let bands: Vec<Columns> = pixels.par_chunks(w * TILE).map(|band| Columns::of(band, settings)).collect();
+        let columns = bands.into_iter().fold(Columns::new(settings), Columns::append);
+        Ok(columns.into_maps(chart, settings))
+    }
+}
+
+/// The maps' columns over a run of texels, and the totals of the [`MapSummary`].
+struct Columns {
+    values: Vec<Vec<f32>>,
+    errors: Option<Vec<Vec<f32>>>,
+    directions: Option<Vec<[[f32; 3]; 2]>>,
+    fit_residual: Option<Vec<f32>>,
+    n_valid: Vec<u32>,
+    n_missing: Vec<u32>,
+    n_border: Vec<u32>,
+    second_stage: Vec<bool>,
+    area_ratio: Vec<f32>,
+    totals: Totals,
+}
+
+/// Sums over the evaluated texels (those with accepted samples).
+#[derive(Default)]
+struct Totals {
+    evaluated: usize,
+    second_stage: usize,
+    clamped: usize,
+    missing: u64,
+    drawn: u64,
+    truncated: usize,
+    several_sheets: usize,
+    valid: u64,
+}
+
+impl Columns {
+    fn new(settings: &ComputeSettings) -> Self {
+        let fitted = settings.method == CurvatureMethod::Fit;
+        let per_feature = || vec![Vec::new(); settings.features.len()];
+        Self {
+            values: per_feature(),
+            errors: settings.standard_errors.then(per_feature),
+            directions: fitted.then(Vec::new),
+            fit_residual: fitted.then(Vec::new),
+            n_valid: Vec::new(),
+            n_missing: Vec::new(),
+            n_border: Vec::new(),
+            second_stage: Vec::new(),
+            area_ratio: Vec::new(),
+            totals: Totals::default(),
+        }
     }
 
-    fn assemble(pixels: &[&PixelResult], chart: Vec<i32>, settings: &ComputeSettings) -> Self {
-        let pick = |f: &(dyn Fn(&PixelResult) -> f32 + Sync)| pixels.par_iter().map(|p| f(p)).collect::<Vec<f32>>();
-        let values = settings.features.iter().map(|feat| pick(&|p| p.values[feat.index()])).collect();
-        let standard_errors = settings
-            .standard_errors
-            .then(|| settings.features.iter().map(|feat| pick(&|p| p.errors[feat.index()])).collect());
-        let fitted = settings.method == CurvatureMethod::Fit;
-        let directions = fitted.then(|| pixels.iter().map(|p| p.directions).collect());
-        let fit_residual = fitted.then(|| pick(&|p| p.residual));
-        let evaluated: Vec<&PixelResult> = pixels.iter().copied().filter(|p| p.counts.valid > 0).collect();
-        let n = evaluated.len().max(1) as f64;
-        let drawn: u64 = evaluated.iter().map(|p| u64::from(p.counts.valid + p.counts.missing + p.counts.border)).sum();
+    fn of(pixels: &[&PixelResult], settings: &ComputeSettings) -> Self {
+        let mut columns = Self::new(settings);
+        for p in pixels {
+            for (column, feature) in columns.values.iter_mut().zip(&settings.features) {
+                column.push(p.values[feature.index()]);
+            }
+            for (column, feature) in columns.errors.iter_mut().flatten().zip(&settings.features) {
+                column.push(p.errors[feature.index()]);
+            }
+            columns.directions.iter_mut().for_each(|d| d.push(p.directions));
+            columns.fit_residual.iter_mut().for_each(|r| r.push(p.residual));
+            columns.n_valid.push(p.counts.valid);
+            columns.n_missing.push(p.counts.missing);
+            columns.n_border.push(p.counts.border);
+            columns.second_stage.push(p.second_stage);
+            columns.area_ratio.push(p.area_ratio);
+            if p.counts.valid > 0 {
+                let totals = &mut columns.totals;
+                totals.evaluated += 1;
+                totals.second_stage += usize::from(p.second_stage);
+                totals.clamped += usize::from(p.clamped);
+                totals.missing += u64::from(p.counts.missing);
+                totals.drawn += u64::from(p.counts.valid + p.counts.missing + p.counts.border);
+                totals.truncated += usize::from(p.counts.border > 0);
+                totals.several_sheets += usize::from(p.area_ratio > SEVERAL_SHEETS);
+                totals.valid += u64::from(p.counts.valid);
+            }
+        }
+        columns
+    }
+
+    /// `self` followed by `next`.
+    fn append(mut self, next: Self) -> Self {
+        self.values.iter_mut().zip(next.values).for_each(|(to, from)| to.extend(from));
+        if let (Some(to), Some(from)) = (&mut self.errors, next.errors) {
+            to.iter_mut().zip(from).for_each(|(to, from)| to.extend(from));
+        }
+        if let (Some(to), Some(from)) = (&mut self.directions, next.directions) {
+            to.extend(from);
+        }
+        if let (Some(to), Some(from)) = (&mut self.fit_residual, next.fit_residual) {
+            to.extend(from);
+        }
+        self.n_valid.extend(next.n_valid);
+        self.n_missing.extend(next.n_missing);
+        self.n_border.extend(next.n_border);
+        self.second_stage.extend(next.second_stage);
+        self.area_ratio.extend(next.area_ratio);
+        let (to, from) = (&mut self.totals, next.totals);
+        to.evaluated += from.evaluated;
+        to.second_stage += from.second_stage;
+        to.clamped += from.clamped;
+        to.missing += from.missing;
+        to.drawn += from.drawn;
+        to.truncated += from.truncated;
+        to.several_sheets += from.several_sheets;
+        to.valid += from.valid;
+        self
+    }
+
+    fn into_maps(self, chart: Vec<i32>, settings: &ComputeSettings) -> FeatureMaps {
+        let totals = &self.totals;
+        let n = totals.evaluated.max(1) as f64;
         let summary = MapSummary {
-            texels: evaluated.len(),
-            second_stage_fraction: evaluated.iter().filter(|p| p.second_stage).count() as f64 / n,
-            clamped_fraction: evaluated.iter().filter(|p| p.clamped).count() as f64 / n,
-            missing_fraction: evaluated.iter().map(|p| f64::from(p.counts.missing)).sum::<f64>() / drawn.max(1) as f64,
-            truncated_texels: evaluated.iter().filter(|p| p.counts.border > 0).count(),
-            several_sheet_texels: evaluated.iter().filter(|p| p.area_ratio > SEVERAL_SHEETS).count(),
-            mean_valid: evaluated.iter().map(|p| f64::from(p.counts.valid)).sum::<f64>() / n,
+            texels: totals.evaluated,
+            second_stage_fraction: totals.second_stage as f64 / n,
+            clamped_fraction: totals.clamped as f64 / n,
+            missing_fraction: totals.missing as f64 / totals.drawn.max(1) as f64,
+            truncated_texels: totals.truncated,
+            several_sheet_texels: totals.several_sheets,
+            mean_valid: totals.valid as f64 / n,
         };
-        Self {
+        FeatureMaps {
             resolution: settings.resolution,
             features: settings.features.clone(),
-            values,
-            standard_errors,
+            values: self.values,
+            standard_errors: self.errors,
             chart,
-            n_valid: pixels.par_iter().map(|p| p.counts.valid).collect(),
-            n_missing: pixels.par_iter().map(|p| p.counts.missing).collect(),
-            n_border: pixels.par_iter().map(|p| p.counts.border).collect(),
-            second_stage: pixels.par_iter().map(|p| p.second_stage).collect(),
-            directions,
-            fit_residual,
-            area_ratio: pick(&|p| p.area_ratio),
+            n_valid: self.n_valid,
+            n_missing: self.n_missing,
+            n_border: self.n_border,
+            second_stage: self.second_stage,
+            directions: self.directions,
+            fit_residual: self.fit_residual,
+            area_ratio: self.area_ratio,
             summary,
         }
     }
