@@ -56,8 +56,11 @@ impl Atlas {
     /// would take), and the position errors of [`Frame::new`].
     pub fn new(topology: Arc<Topology>, positions: &[DVec3], options: &AtlasOptions) -> Result<Self> {
         check_resolution(options)?;
-        let frame = Frame::new(&topology, positions)?;
-        let coverage = Coverage::build(&topology, options.resolution);
+        // The coverage depends on the UVs only: it is rasterised while the frame is evaluated, so
+        // that the one-thread parts of each overlap.
+        let (frame, coverage) =
+            rayon::join(|| Frame::new(&topology, positions), || Coverage::build(&topology, options.resolution));
+        let frame = frame?;
         let patches = FacePatches::new(&topology, &frame);
         Ok(Self {
             topology,
