@@ -299,3 +299,33 @@ impl Columns {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::features::Feature;
+    use crate::mesh::{Topology, TriangleMesh};
+    use crate::shapes::plane;
+    use crate::AtlasOptions;
+    use std::sync::Arc;
+
+    #[test]
+    fn the_shared_lattice_tiles_follow_the_ball_in_texels() {
+        // A plane of side 2 laid out on 0.96 of the unit square: 2 / 0.96 object units per
+        // parametric unit, so a ball of radius r spans r * 0.48 * 512 computation texels.
+        let shape = plane(2.0, 32);
+        let mesh = TriangleMesh::new(&shape.positions, &shape.faces, &shape.uvs, &shape.uv_faces).unwrap();
+        let topology = Arc::new(Topology::build(&mesh, 0.0).unwrap());
+        let atlas = Atlas::new(topology, &mesh.positions, &AtlasOptions { resolution: 256, ..Default::default() }).unwrap();
+        let side = |radius: f64| {
+            let settings = ComputeSettings::new(vec![Feature::MeanCurvature], radius);
+            (ball_texels(&atlas, &settings), tile_side(&atlas, &settings, true), tile_side(&atlas, &settings, false))
+        };
+        let (ball, shared, per_texel) = side(0.2);
+        assert!((ball - 0.2 * 0.48 * 512.0).abs() < 1e-6 * ball, "{ball}");
+        assert_eq!((shared, per_texel), (32, TILE));
+        assert_eq!(side(0.05).1, TILE);
+        assert_eq!(side(0.3).1, 64);
+        assert_eq!(side(2.0).1, LARGEST_TILE);
+    }
+}
