@@ -34,6 +34,13 @@ impl Distortion {
         }
     }
 
+    /// The metric `[E, F, G]` back: `R(theta) diag(sigma_1^2, sigma_2^2) R(theta)^T`.
+    pub fn metric(&self) -> [f64; 3] {
+        let (s, c) = self.theta.sin_cos();
+        let (l1, l2) = (self.sigma1 * self.sigma1, self.sigma2 * self.sigma2);
+        [l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c]
+    }
+
     /// Area element `J = sigma_1 sigma_2 = sqrt(EG - F^2)` (object area per uv area).
     pub fn area_element(&self) -> f64 {
         self.sigma1 * self.sigma2

@@ -24,11 +24,10 @@ const LARGEST_TILE: usize = 64;
 /// (each located, many across seams) falls with the tile's area, while the run of points each
 /// texel sums grows only with its side (xatlas torus at r = 16 %: 0.96 s with 16-texel tiles,
 /// 0.74 s with 64; at 2 % 16 and 64 alike).
-fn tile_side(atlas: &Atlas, settings: &ComputeSettings, shared: bool) -> usize {
+fn tile_side(ball: f64, shared: bool) -> usize {
     if !shared {
         return TILE;
     }
-    let ball = ball_texels(atlas, settings);
     let below = if ball >= 1.0 { 1usize << ball.log2().floor() as u32 } else { 1 };
     below.clamp(TILE, LARGEST_TILE)
 }
@@ -132,7 +131,8 @@ impl FeatureMaps {
         let patterns = Patterns::new(settings);
         prepare(atlas, settings);
         let shared = shared_lattice_applies(atlas, settings);
-        let tiles = tiles(w, tile_side(atlas, settings, shared));
+        let ball = ball_texels(atlas, settings);
+        let tiles = tiles(w, tile_side(ball, shared));
         // Kept tile by tile: flattening them into one vector copied 31 MB (a fifth of a 200K-face
         // sphere's features in one thread).
         let results: Vec<Vec<PixelResult>> = tiles
@@ -316,10 +316,12 @@ mod tests {
         let shape = plane(2.0, 32);
         let mesh = TriangleMesh::new(&shape.positions, &shape.faces, &shape.uvs, &shape.uv_faces).unwrap();
         let topology = Arc::new(Topology::build(&mesh, 0.0).unwrap());
-        let atlas = Atlas::new(topology, &mesh.positions, &AtlasOptions { resolution: 256, ..Default::default() }).unwrap();
+        let atlas =
+            Atlas::new(topology, &mesh.positions, &AtlasOptions { resolution: 256, ..Default::default() }).unwrap();
         let side = |radius: f64| {
             let settings = ComputeSettings::new(vec![Feature::MeanCurvature], radius);
-            (ball_texels(&atlas, &settings), tile_side(&atlas, &settings, true), tile_side(&atlas, &settings, false))
+            let ball = ball_texels(&atlas, &settings);
+            (ball, tile_side(ball, true), tile_side(ball, false))
         };
         let (ball, shared, per_texel) = side(0.2);
         assert!((ball - 0.2 * 0.48 * 512.0).abs() < 1e-6 * ball, "{ball}");

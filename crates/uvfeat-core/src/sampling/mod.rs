@@ -16,6 +16,7 @@ mod pattern;
 mod per_chart;
 mod reach;
 mod sample;
+mod secant_metric;
 mod settings;
 mod sheets;
 mod surfels;
@@ -31,5 +32,6 @@ pub use pattern::{
 };
 pub use reach::{Reach, DIRECTIONS};
 pub use sample::{ramp_centre, Sample, SampleCounts};
+pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 pub use surfels::{gather_surfels, surfel_centre};
