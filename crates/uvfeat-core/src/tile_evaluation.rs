@@ -161,21 +161,28 @@ fn evaluate_group(atlas: &Atlas, settings: &ComputeSettings, centre: Centre, mem
     group
 }
 
-/// Ball radius in computation texels below which a group's plane takes the metric at the ball's
-/// scale. On the noisy 200K surfaces of docs/PEERS.md it spares most texels their grown lattice
-/// (features at r = 2 %: 0.5-0.6 -> 0.3-0.4 s), the errors within 0.98-1.02x at 2 and 4 %; at 8 %
-/// (balls of about 40 texels) the face's metric with its grown domains gave the noisy lat-long
-/// sphere's and ellipsoid's poles 5 % less H error.
+/// Ball radius in computation texels below which a group's plane may take the metric at the
+/// ball's scale. At 8 % (balls of about 40 texels) the face's metric with its grown domains gave
+/// the noisy lat-long sphere's and ellipsoid's poles 5 % less H error.
 const SECANT_BALL: f64 = 32.0;
 
+/// Area element of the centre's face over the secant metric's above which the face is taken to be
+/// tilted by noise. Smooth meshes keep their faces' metric: with the chords everywhere, the coarse
+/// Spot's maps moved enough across its seams to fail the texture-baking test (`test_bake`: max
+/// seam error 1.4 -> 7.7 % of the range).
+const ROUGH_FACE: f64 = 1.1;
+
 /// The metric of the plane of the group around `centre`: the surface's at the scale of the ball
-/// ([`secant_distortion`]) where the ball spans fewer than [`SECANT_BALL`] texels in it, else the
-/// centre face's own.
+/// ([`secant_distortion`]) where the centre's face is rough (its area element over the secant's
+/// above [`ROUGH_FACE`]) and the ball spans fewer than [`SECANT_BALL`] texels, else the face's own.
+/// On the noisy 200K surfaces of docs/PEERS.md it spares most texels their grown lattice
+/// (features at r = 2 %: 0.5-0.6 -> 0.25-0.35 s); smooth surfaces keep their faces' metric.
 fn plane_metric(atlas: &Atlas, centre: &Centre, settings: &ComputeSettings) -> Distortion {
+    let face = centre.distortion;
     let ball_texels = |metric: &Distortion| settings.radius / metric.area_element().sqrt() * settings.resolution as f64;
     secant_distortion(atlas, centre, &settings.sampler())
-        .filter(|metric| ball_texels(metric) < SECANT_BALL)
-        .unwrap_or(centre.distortion)
+        .filter(|secant| face.area_element() > ROUGH_FACE * secant.area_element() && ball_texels(secant) < SECANT_BALL)
+        .unwrap_or(face)
 }
 
 /// The member nearest the members' mean location: the centre of the group's sampling plane
