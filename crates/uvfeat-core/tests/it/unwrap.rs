@@ -217,10 +217,11 @@ fn thousands_of_slivers_still_pack() {
 
 #[test]
 fn noise_at_the_scale_of_the_faces_does_not_cut_a_chart_at_every_face() {
-    const AMPLITUDE: f64 = 0.03;
-    // A torus whose vertices move along their normals by up to 0.6 of the tube's edge length,
-    // pseudo-randomly (as a scan's noise): the face normals scatter by tens of degrees; the
-    // smoothed normals the cone test reads do not.
+    const AMPLITUDE: f64 = 0.05;
+    // A torus whose vertices move along their normals by up to one edge length of the tube,
+    // pseudo-randomly (as a scan's noise): the face normals scatter by tens of degrees and the
+    // projections of the faces fold; the smoothed normals the cone test reads, and the smoothed
+    // surface the rough parts are projected from, do not.
     let mut shape = torus(2.0, 0.5, 128, 64);
     for (k, p) in shape.positions.iter_mut().enumerate() {
         let hash = (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40;
@@ -230,8 +231,8 @@ fn noise_at_the_scale_of_the_faces_does_not_cut_a_chart_at_every_face() {
         *p = (point + (point - ring).normalize() * offset).to_array();
     }
     let (mesh, n_charts) = unwrapped(&shape, &UnwrapOptions::default());
-    // Measured: 63 charts; 262 when the cone test read the faces' own normals.
-    assert!(n_charts < 130, "{n_charts} charts for {} faces", mesh.faces.len());
+    // Measured: 41 charts; 213 when every face was projected from the surface itself.
+    assert!(n_charts < 80, "{n_charts} charts for {} faces", mesh.faces.len());
     let atlas = atlas(&mesh, 1024);
     assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
     assert_eq!(atlas.topology.diagnostics.mirrored_uv_faces, 0);
