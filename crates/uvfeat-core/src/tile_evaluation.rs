@@ -174,24 +174,12 @@ const ROUGH_FACE: f64 = 1.1;
 
 /// The metric of the plane of the group around `centre`: the surface's at the scale of the ball
 /// ([`secant_distortion`]) where the centre's face is rough (its area element over the secant's
-/// above [`ROUGH_FACE`]), the ball spans fewer than [`SECANT_BALL`] texels and stays inside the
-/// centre's chart, else the face's own.
+/// above [`ROUGH_FACE`]) and the ball spans fewer than [`SECANT_BALL`] texels, else the face's own.
 /// On the noisy 200K surfaces of docs/PEERS.md it spares most texels their grown lattice
 /// (features at r = 2 %: 0.5-0.6 -> 0.25-0.35 s); smooth surfaces keep their faces' metric.
 fn plane_metric(atlas: &Atlas, centre: &Centre, settings: &ComputeSettings) -> Distortion {
     let face = centre.distortion;
     let ball_texels = |metric: &Distortion| settings.radius / metric.area_element().sqrt() * settings.resolution as f64;
-    // Where the ball reaches past the centre's chart, the chords' larger ellipse carries more of the
-    // lattice across seams, each point a walk: on a scan's many small charts that cost more than
-    // the grown lattices it spared (the noisy torus's 4,228 own charts at 2 %: 6.9-8.5 s of CPU
-    // with the chords there, 5.7-6.9 without, 7.2-8.2 with none).
-    let buffer_ball = settings.radius / face.area_element().sqrt() * atlas.resolution() as f64;
-    let inside_chart = atlas
-        .texel_coordinates(centre.uv)
-        .is_some_and(|(i, j)| f64::from(atlas.coverage.chart_distance.at(i, j)) > buffer_ball);
-    if !inside_chart {
-        return face;
-    }
     secant_distortion(atlas, centre, &settings.sampler())
         .filter(|secant| face.area_element() > ROUGH_FACE * secant.area_element() && ball_texels(secant) < SECANT_BALL)
         .unwrap_or(face)

@@ -7,12 +7,14 @@
 //! they grow), and they take a fraction of a second where an optimising unwrapper (xatlas: about
 //! 20 s for 100K faces on two cores) takes seconds per ten thousand faces.
 
+mod charted_surface;
 mod pack;
 mod segment;
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
 use crate::mesh::{checked_indices, checked_positions, has_repeated_corner, sorted_half_edges, weld_positions};
+use charted_surface::charted_positions;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use segment::{FaceGraph, NO_FACE};
@@ -162,91 +164,6 @@ fn face_neighbours(faces: &[[u32; 3]]) -> Vec<[u32; 3]> {
     }
     neighbours
 }
-
-/// The positions the charts are grown on and projected from: the surface's own where it is smooth,
-/// the [`smoothed_positions`] where it is rough, blended by how far the vertex's faces' own normals
-/// stray from their smoothed ones (from [`ROUGH_FROM`] to [`ROUGH_TO`] degrees, the largest).
-///
-/// A chart's UVs need not be the projection of the surface itself, only injective (every face's
-/// metric undoes the map, §1.3.3). A scan's noise folds the projection of single faces and their
-/// fans, each fold a chart of a few faces (the noisy 200K torus of docs/PEERS.md: 3,961 of its 4,228
-/// charts had at most 20 faces); the smoothed surface projects without folds. Where the surface is
-/// smooth its own projection stays: a face's UV triangle is then its shadow, whose metric varies
-/// smoothly from face to face, which the sampler reads more accurately than the smoothed surface's
-/// (the bunny's H against the object-space reference, %AE: 1.07 projected, 1.19 smoothed).
-fn charted_positions(
-    positions: &[DVec3],
-    faces: &[[u32; 3]],
-    normals: &[DVec3],
-    smoothed_normals: &[DVec3],
-) -> Vec<DVec3> {
-    let (cos_from, cos_to) = (ROUGH_FROM.to_radians().cos(), ROUGH_TO.to_radians().cos());
-    let mut roughness = vec![0.0f64; positions.len()];
-    for (t, (n, s)) in faces.iter().zip(normals.iter().zip(smoothed_normals)) {
-        if *n == DVec3::ZERO {
-            continue;
-        }
-        let weight = ((cos_from - n.dot(*s)) / (cos_from - cos_to)).clamp(0.0, 1.0);
-        for &v in t {
-            roughness[v as usize] = roughness[v as usize].max(weight);
-        }
-    }
-    if roughness.iter().all(|&w| w == 0.0) {
-        return positions.to_vec();
-    }
-    let smoothed = smoothed_positions(positions, faces);
-    positions.par_iter().zip(&smoothed).zip(&roughness).map(|((p, s), &w)| p.lerp(*s, w)).collect()
-}
-
-/// Angles (degrees) between a face's own and smoothed normal from which its corners start to be
-/// charted on the smoothed surface, and from which they are wholly. Measured, 99th percentile of the
-/// angle: the Stanford bunny 17.5°, the armadillo 23°, the dragon 48°, the noisy 200K torus 74°
-/// (median 41°).
-const ROUGH_FROM: f64 = 20.0;
-const ROUGH_TO: f64 = 40.0;
-
-/// Each vertex moved to the mean of its edge neighbours [`POSITION_SMOOTHING_STEPS`] times.
-fn smoothed_positions(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<DVec3> {
-    // Each face corner lists the face's other two corners: interior edges count twice, once per
-    // face, as do all of a closed fan's, so the mean weighs the ring evenly.
-    let mut starts = vec![0u32; positions.len() + 1];
-    for t in faces {
-        for &v in t {
-            starts[v as usize + 1] += 2;
-        }
-    }
-    for v in 0..positions.len() {
-        starts[v + 1] += starts[v];
-    }
-    let mut ring = vec![0u32; starts[positions.len()] as usize];
-    let mut filled = starts.clone();
-    for t in faces {
-        for k in 0..3 {
-            let v = t[k] as usize;
-            ring[filled[v] as usize] = t[(k + 1) % 3];
-            ring[filled[v] as usize + 1] = t[(k + 2) % 3];
-            filled[v] += 2;
-        }
-    }
-    let mut smoothed = positions.to_vec();
-    for _ in 0..POSITION_SMOOTHING_STEPS {
-        smoothed = (0..positions.len())
-            .into_par_iter()
-            .map(|v| {
-                let around = &ring[starts[v] as usize..starts[v + 1] as usize];
-                if around.is_empty() {
-                    smoothed[v]
-                } else {
-                    around.iter().map(|&u| smoothed[u as usize]).sum::<DVec3>() / around.len() as f64
-                }
-            })
-            .collect();
-    }
-    smoothed
-}
-
-/// Rounds of neighbour averaging in [`smoothed_positions`].
-const POSITION_SMOOTHING_STEPS: usize = 4;
 
 /// Face normals averaged with their edge neighbours' [`SMOOTHING_STEPS`] times: what the cone
 /// test reads, so that noise at the scale of the faces (a scan's, or 0.3 edge lengths of normal
