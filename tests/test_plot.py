@@ -13,7 +13,6 @@ import pytest
 
 import uvfeat
 from uvfeat.cli import main
-from uvfeat.render import rasterise
 
 
 def picture_of(figure) -> np.ndarray:
@@ -70,16 +69,6 @@ def test_bad_arguments_raise_typed_errors():
         uvfeat.plot(sphere, np.zeros(sphere.n_vertices), radius=[1, 2])
     with pytest.raises(uvfeat.InvalidParameterError, match="up must be"):
         uvfeat.plot(sphere, np.zeros(sphere.n_vertices), up="w")
-
-
-def test_the_z_buffer_keeps_the_nearest_triangle():
-    # two overlapping triangles, the second one nearer: it wins wherever they overlap, in any order
-    screen = np.array([[0, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 1], [10, 0, 1], [0, 10, 1.0]])
-    for faces in (np.array([[0, 1, 2], [3, 4, 5]]), np.array([[3, 4, 5], [0, 1, 2]])):
-        fragments = rasterise(screen, faces, 10, 10)
-        assert set(faces[fragments.face, 0]) == {3}
-        assert len(fragments.pixel) == 55                 # pixel centres on or below the diagonal
-        np.testing.assert_allclose(fragments.weights.sum(axis=1), 1.0)
 
 
 def test_compute_writes_a_3d_picture_of_every_feature(tmp_path):

@@ -14,7 +14,7 @@ __all__ = [
     "Atlas",
     "shape",
     "unwrap",
-    "rasterise_screen",
+    "shaded_view",
     "atlas_bytes",
     "ComputeSettings",
     "FeatureMaps",
@@ -51,10 +51,19 @@ def unwrap(
 ) -> tuple[NDArray[np.float64], NDArray[np.int64], int]:
     """Normal-cone charts packed into the unit square: ``(uvs, uv_faces, n_charts)``."""
 
-def rasterise_screen(
-    screen: NDArray[np.float64], faces: NDArray[np.int64], height: int, width: int
-) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """Nearest face per pixel (``(height, width)``, -1 where none) and its barycentric weights."""
+def shaded_view(
+    view: NDArray[np.float64],
+    faces: NDArray[np.int64],
+    values: NDArray[np.float64],
+    palette: NDArray[np.float64],
+    range: tuple[float, float],
+    corner: tuple[float, float],
+    scale: float,
+    size: tuple[int, int],
+    supersampling: int,
+    front: int,
+) -> NDArray[np.float64]:
+    """RGBA picture of per-vertex ``values`` on the faces seen from ``front``, shaded by a headlight."""
 
 @final
 class Topology:

@@ -1,28 +1,42 @@
-//! The core's screen rasteriser (behind `uvfeat.render`), as arrays.
+//! The core's shaded pictures of per-vertex values (behind `uvfeat.render`), as arrays.
 
 use crate::arrays::{flatten, rows, to_numpy};
 use crate::error::guarded;
-use numpy::{PyArrayDyn, PyReadonlyArray2};
+use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use uvfeat_core::output::rasterise_screen;
+use uvfeat_core::output::{shaded_view, ColourScale, Front, ViewFrame};
 
-type FragmentArrays<'py> = (Bound<'py, PyArrayDyn<i64>>, Bound<'py, PyArrayDyn<f64>>);
-
-/// Z-buffer rasterisation of `faces` with corners `screen` in pixel units (x right, y down, z
-/// towards the viewer): `(face, weights)` per pixel of the `height x width` picture, face -1 where
-/// nothing is drawn.
-#[pyfunction(name = "rasterise_screen")]
-pub fn rasterise_screen_arrays<'py>(
+/// `(height / s, width / s, 4)` RGBA picture of `values` per vertex on `faces`, whose vertices are
+/// at view coordinates `view` (x right, y up, z towards the viewer), through `palette` over
+/// `[low, high]`; `left`, `top` and `scale` place the rasterised `height x width` pixels, `s` the
+/// supersampling; `front` is 0 (both sides seen), 1 (counter-clockwise side) or -1.
+#[pyfunction(name = "shaded_view")]
+#[allow(clippy::too_many_arguments)]
+pub fn shaded_view_array<'py>(
     py: Python<'py>,
-    screen: PyReadonlyArray2<'_, f64>,
+    view: PyReadonlyArray2<'_, f64>,
     faces: PyReadonlyArray2<'_, i64>,
-    height: usize,
-    width: usize,
-) -> PyResult<FragmentArrays<'py>> {
-    let (points, triangles) = (rows::<f64, 3>(&screen, "screen")?, rows::<i64, 3>(&faces, "faces")?);
-    let fragments = guarded(py, || rasterise_screen(points, triangles, height, width))?;
-    Ok((
-        to_numpy(py, fragments.face, &[height, width])?,
-        to_numpy(py, flatten(&fragments.weights), &[height, width, 3])?,
-    ))
+    values: PyReadonlyArray1<'_, f64>,
+    palette: PyReadonlyArray2<'_, f64>,
+    range: (f64, f64),
+    corner: (f64, f64),
+    scale: f64,
+    size: (usize, usize),
+    supersampling: usize,
+    front: i32,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let front = match front {
+        0 => Front::Both,
+        1 => Front::CounterClockwise,
+        -1 => Front::Clockwise,
+        other => return Err(PyValueError::new_err(format!("front must be -1, 0 or 1, got {other}"))),
+    };
+    let (view, faces) = (rows::<f64, 3>(&view, "view")?, rows::<i64, 3>(&faces, "faces")?);
+    let (values, palette) = (values.as_slice()?, rows::<f64, 3>(&palette, "palette")?);
+    let colours = ColourScale { palette, low: range.0, high: range.1 };
+    let frame = ViewFrame { left: corner.0, top: corner.1, scale, height: size.0, width: size.1, supersampling };
+    let picture = guarded(py, || shaded_view(view, faces, values, &colours, &frame, front))?;
+    let s = supersampling.max(1);
+    to_numpy(py, flatten(&picture), &[size.0.div_ceil(s), size.1.div_ceil(s), 4])
 }
