@@ -9,7 +9,7 @@ mod march;
 mod walk;
 
 pub use march::{border_texel, cross_seam, last_inside, march, Crossing};
-pub use walk::{home, walk, Home};
+pub use walk::{home, walk, walk_across, Home, Seams};
 
 use crate::atlas::Atlas;
 use glam::{DMat2, DVec2};

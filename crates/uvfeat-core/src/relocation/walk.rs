@@ -166,6 +166,22 @@ const SKIP_EVERY: usize = 4;
 /// loop of DESIGN.md §1.5.2 does: walking on to it would cross that chart's texels one face at a time, the
 /// larger part of a crossing sample's cost at large radii.
 pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Located {
+    walk_across(atlas, home, target, max_jumps, Seams::Any)
+}
+
+/// Which seams a walk may cross.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Seams {
+    /// Any.
+    Any,
+    /// Only those with the same chart on both sides (the slits between a lat-long pole's fan
+    /// triangles, a chart's own wrap-around); a seam into another chart ends the walk as
+    /// [`Located::Missing`].
+    WithinChart,
+}
+
+/// [`walk`], crossing only the `seams` allowed.
+pub fn walk_across(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32, seams: Seams) -> Located {
     let topology = &atlas.topology;
     let (mut face, mut entry, mut from, mut target) = (home.face, None, home.point, target);
     let mut m_path = DMat2::IDENTITY;
@@ -187,6 +203,11 @@ pub fn walk(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32) -> Locate
                     return Located::Missing;
                 }
                 let across = &topology.sides[topology.sides[side as usize].reverse as usize];
+                if seams == Seams::WithinChart
+                    && topology.face_chart[across.face as usize] != topology.face_chart[face as usize]
+                {
+                    return Located::Missing;
+                }
                 target = map.apply(target);
                 m_path = map.m * m_path;
                 jumps += 1;

@@ -115,6 +115,32 @@ fn locate_walks_around_the_torus_across_its_self_adjacent_seam() {
 }
 
 #[test]
+fn a_walk_within_the_chart_crosses_a_chart_s_own_seam_but_no_other() {
+    use uvfeat_core::relocation::{home, walk_across, Seams};
+    // The torus's wrap-around seam has its one chart on both sides.
+    let atlas_torus = atlas(&torus(2.0, 0.5, 128, 64), 1024);
+    let start = DVec2::new(0.03, 0.5);
+    let from = home(&atlas_torus, start, 0).unwrap();
+    let target = start - DVec2::new(0.05, 0.0);
+    for seams in [Seams::Any, Seams::WithinChart] {
+        assert!(matches!(
+            walk_across(&atlas_torus, &from, target, 3, seams),
+            Located::Inside { chart: 0, jumps: 1, .. }
+        ));
+    }
+    // The split plane's seam has another chart across.
+    let plane = atlas(&split_plane(16, false), 512);
+    let (start, target) = (DVec2::new(0.3, 0.5), DVec2::new(0.7, 0.5));
+    let chart = plane.chart_at(start);
+    let from = home(&plane, start, chart).unwrap();
+    let Located::Inside { chart: across, jumps: 1, .. } = walk_across(&plane, &from, target, 3, Seams::Any) else {
+        panic!("the walk did not cross the seam");
+    };
+    assert_ne!(across, chart);
+    assert_eq!(walk_across(&plane, &from, target, 3, Seams::WithinChart), Located::Missing);
+}
+
+#[test]
 fn locate_reports_the_mesh_border() {
     let atlas = atlas(&split_plane(16, false), 512);
     let start = DVec2::new(0.1, 0.5);
