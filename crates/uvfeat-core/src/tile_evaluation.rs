@@ -105,13 +105,17 @@ fn reaches(atlas: &Atlas, centre: &Centre, member: &Centre, max_jumps: u32) -> b
         }
         _ => None,
     };
-    let target = member.home.point;
     if member.uv == centre.uv {
         return true;
     }
-    match walk_across(atlas, &centre.home, target, max_jumps, Seams::WithinChart) {
+    match walk_across(atlas, &centre.home, member.home.point, max_jumps, Seams::WithinChart) {
         Located::Inside { jumps: 0, chart, .. } => chart == centre.chart,
         Located::Inside { chart, .. } if chart == centre.chart => {
+            // A texel centre in a slit has its home on the edge of a fan triangle, where a walk may
+            // end on either side of the slit: the axes' path aims a hair inside its face.
+            let corners = atlas.topology.corner_uvs(member.home.face as usize);
+            let inside = (corners[0] + corners[1] + corners[2]) / 3.0;
+            let target = member.home.point + 1e-3 * (inside - member.home.point);
             [DVec2::new(target.x, centre.home.point.y), DVec2::new(centre.home.point.x, target.y)]
                 .into_iter()
                 .any(|corner| within(&centre.home, corner).is_some_and(|turn| within(&turn, target).is_some()))
