@@ -8,17 +8,18 @@ use rayon::prelude::*;
 /// Group id of a corner of a face without a chart.
 pub const NO_CORNER: u32 = u32::MAX;
 
-/// Groups the corners of the charted faces: `(group of each face corner, number of groups)`.
+/// Groups the corners of the faces not `excluded` (those charted): `(group of each face corner,
+/// number of groups)`.
 pub(crate) fn corner_groups(
     faces: &[[u32; 3]],
     corner_uvs: &[[DVec2; 3]],
-    face_chart: &[i32],
+    excluded: &[bool],
 ) -> (Vec<[u32; 3]>, usize) {
     let corners: Vec<(u32, u64, u64, u32)> = faces
         .par_iter()
         .zip(corner_uvs)
         .enumerate()
-        .filter(|&(f, _)| face_chart[f] >= 0)
+        .filter(|&(f, _)| !excluded[f])
         .flat_map_iter(|(f, (tri, uv))| {
             (0..3).map(move |k| (tri[k], uv[k].x.to_bits(), uv[k].y.to_bits(), (f * 3 + k) as u32))
         })

@@ -77,12 +77,19 @@ impl Topology {
         if degenerate_uv_faces == faces.len() {
             return Err(UvfeatError::AllUvDegenerate { faces: faces.len() });
         }
-        let classes = classify_edges(&faces, &corner_uvs, &excluded);
-        let pairs = classes.interior_pairs.iter().map(|(x, y)| (x.face, y.face));
-        let (face_chart, n_charts) = chart_ids(faces.len(), pairs, &excluded);
-        let sides = boundary_sides(&classes.boundary, &face_chart);
-        let walk_faces = walk_faces(&corner_uvs, &face_links(faces.len(), &classes.interior_pairs, &sides));
-        let (corner_groups, n_corners) = corner_groups(&faces, &corner_uvs, &face_chart);
+        // The corners' groups need neither the edges nor the charts (a face has a chart unless it
+        // is excluded): built beside them (the 200K ellipsoid's topology: 66-100 -> 45-70 ms).
+        let ((classes, face_chart, n_charts, sides, walk_faces), (corner_groups, n_corners)) = rayon::join(
+            || {
+                let classes = classify_edges(&faces, &corner_uvs, &excluded);
+                let pairs = classes.interior_pairs.iter().map(|(x, y)| (x.face, y.face));
+                let (face_chart, n_charts) = chart_ids(faces.len(), pairs, &excluded);
+                let sides = boundary_sides(&classes.boundary, &face_chart);
+                let walk_faces = walk_faces(&corner_uvs, &face_links(faces.len(), &classes.interior_pairs, &sides));
+                (classes, face_chart, n_charts, sides, walk_faces)
+            },
+            || corner_groups(&faces, &corner_uvs, &excluded),
+        );
         let mirrored_uv_faces =
             corner_uvs.iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();
         let diagnostics = TopologyDiagnostics {

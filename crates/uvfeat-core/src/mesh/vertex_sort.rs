@@ -33,9 +33,7 @@ where
         sorted[*slot] = item;
         *slot += 1;
     }
-    for bucket in start.windows(2) {
-        sorted[bucket[0]..bucket[1]].sort_unstable();
-    }
+    sorted.par_chunk_by_mut(|a, b| vertex(a) == vertex(b)).for_each(|bucket| bucket.sort_unstable());
     sorted
 }
 
