@@ -1,7 +1,7 @@
 """Fuzzes the core entry points on random arrays: ``Mesh`` (positions, faces, UVs with NaN, Inf,
 huge and out-of-range values), ``Atlas``, ``Atlas.compute`` (both quadratures), ``Atlas.locate`` and
-``Atlas.update`` with random parameters, the automatic atlas (``uvfeat.unwrap.chart_uvs``) and the pictures' z-buffer
-(``uvfeat.render.rasterise``). Run (no corpus needed)::
+``Atlas.update`` with random parameters, the automatic atlas (``uvfeat.unwrap.chart_uvs``) and the core's
+pictures of per-vertex values (``_core.shaded_view``, behind ``uvfeat.render``). Run (no corpus needed)::
 
     .venv/bin/python fuzz/fuzz_core.py fuzz/corpus/core -max_total_time=60 -timeout=20
 
@@ -18,7 +18,7 @@ import numpy as np
 with atheris.instrument_imports():
     import uvfeat
     from harness import EXPECTED, numbers, quiet
-    from uvfeat.render import rasterise
+    from uvfeat import _core
 
 FEATURES = uvfeat.options.FEATURES
 RADII = (-1.0, 0.0, float("nan"), 1e-9, 0.05, 0.3, 1e9)
@@ -78,7 +78,13 @@ def run(data: bytes) -> None:
     except EXPECTED:
         pass
     try:
-        rasterise(positions * fdp.ConsumeFloat(), faces, fdp.ConsumeIntInRange(0, 48), fdp.ConsumeIntInRange(0, 48))
+        values = numbers(fdp.ConsumeBytes(8 * len(positions)), len(positions))
+        n_colours = fdp.ConsumeIntInRange(0, 4)
+        palette = np.clip(numbers(fdp.ConsumeBytes(24 * n_colours), 3 * n_colours).reshape(-1, 3), 0.0, 1.0)
+        _core.shaded_view(np.ascontiguousarray(positions * fdp.ConsumeFloat()), faces, values, palette,
+                          (fdp.ConsumeFloat(), fdp.ConsumeFloat()), (fdp.ConsumeFloat(), fdp.ConsumeFloat()),
+                          fdp.ConsumeFloat(), (fdp.ConsumeIntInRange(0, 48), fdp.ConsumeIntInRange(0, 48)),
+                          fdp.ConsumeIntInRange(0, 3), fdp.ConsumeIntInRange(-1, 1))
     except EXPECTED:
         pass
 
