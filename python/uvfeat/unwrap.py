@@ -4,8 +4,9 @@ Two unwrappers, chosen by ``method`` wherever an atlas is built (:meth:`uvfeat.M
 ``uvfeat.load(uv=...)``, the CLI's ``--uv``):
 
 - ``"charts"`` (default): uvfeat's own normal-cone charts, each projected onto the plane across
-  its cone's axis and checked to be injective as it grows, packed as bitmaps. 0.1-0.35 s for
-  70K-280K faces; the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
+  its cone's axis and checked to be injective as it grows, packed as bitmaps; rough parts (a
+  scan's noise) are charted on a smoothed copy of the surface. 0.1-0.35 s for 70K-280K faces;
+  the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
 - ``"xatlas"``: xatlas's optimised charts (fewer, rounder, less stretched; about 20 s for 100K
   faces on two cores). Its result depends only on the mesh and the options, so it is cached on
   disk, keyed by a hash of the positions, the faces, the options and the xatlas version: a second
