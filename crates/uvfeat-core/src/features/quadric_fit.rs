@@ -323,7 +323,6 @@ mod tests {
         let samples = circle_samples(frame, DVec3::ZERO, [-2.0, 0.0, -0.5], r);
         let tilted = (n + 0.15 * (frame * DVec3::new(0.6, 0.8, 0.0))).normalize();
         let fit = quadric_fit(0.01 * r * n, tilted, &samples, r, false).unwrap();
-        eprintln!("{fit:?}");
         assert!((fit.k1 - 2.0).abs() < 2e-3 && (fit.k2 - 0.5).abs() < 2e-3, "{fit:?}");
         assert!(fit.d1.dot(frame * DVec3::X).abs() > 0.9999);
     }
