@@ -108,9 +108,10 @@ fn reaches(atlas: &Atlas, centre: &Centre, member: &Centre, max_jumps: u32) -> b
     if member.uv == centre.uv {
         return true;
     }
+    // Within the chart, the walk ends in the centre's chart or not at all.
     match walk_across(atlas, &centre.home, member.home.point, max_jumps, Seams::WithinChart) {
-        Located::Inside { jumps: 0, chart, .. } => chart == centre.chart,
-        Located::Inside { chart, .. } if chart == centre.chart => {
+        Located::Inside { jumps: 0, .. } => true,
+        Located::Inside { .. } => {
             // A texel centre in a slit has its home on the edge of a fan triangle, where a walk may
             // end on either side of the slit: the axes' path aims a hair inside its face.
             let corners = atlas.topology.corner_uvs(member.home.face as usize);
@@ -208,6 +209,11 @@ const ROUGH_FACE: f64 = 1.1;
 fn plane_metric(atlas: &Atlas, centre: &Centre, settings: &ComputeSettings) -> Distortion {
     let face = centre.distortion;
     let ball_texels = |metric: &Distortion| settings.radius / metric.area_element().sqrt() * settings.resolution as f64;
+    // A secant the face is rough against spans more texels than the face's ball by sqrt(ROUGH_FACE)
+    // at least: where that is past SECANT_BALL already (large radii), no chord is walked.
+    if ROUGH_FACE.sqrt() * ball_texels(&face) >= SECANT_BALL {
+        return face;
+    }
     secant_distortion(atlas, centre, &settings.sampler())
         .filter(|secant| face.area_element() > ROUGH_FACE * secant.area_element() && ball_texels(secant) < SECANT_BALL)
         .unwrap_or(face)

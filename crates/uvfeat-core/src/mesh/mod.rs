@@ -23,6 +23,7 @@ pub use normals::vertex_normals;
 pub use sides::BoundarySide;
 pub use topology::{Topology, TopologyDiagnostics};
 pub use transition::{seam_maps, SeamMap};
+pub(crate) use vertex_sort::compressed_rows;
 pub use weld::weld_positions;
 
 use crate::error::{Result, UvfeatError};

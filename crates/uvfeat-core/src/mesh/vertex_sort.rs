@@ -37,6 +37,24 @@ where
     sorted
 }
 
+/// Compressed rows (`start`, `items`) of `(row, item)` pairs.
+pub(crate) fn compressed_rows(rows: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; rows + 1];
+    for (row, _) in pairs.clone() {
+        start[row as usize + 1] += 1;
+    }
+    for r in 0..rows {
+        start[r + 1] += start[r];
+    }
+    let mut fill = start.clone();
+    let mut items = vec![0u32; start[rows] as usize];
+    for (row, item) in pairs {
+        items[fill[row as usize] as usize] = item;
+        fill[row as usize] += 1;
+    }
+    (start, items)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

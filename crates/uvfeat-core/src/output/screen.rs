@@ -78,6 +78,11 @@ pub fn rasterise_screen(
     width: usize,
 ) -> Result<ScreenFragments> {
     let faces = checked_indices(faces, screen.len(), "screen point")?;
+    Ok(rasterise_faces(screen, &faces, height, width))
+}
+
+/// [`rasterise_screen`] of faces whose corners are known to index `screen`.
+pub(super) fn rasterise_faces(screen: &[[f64; 3]], faces: &[[u32; 3]], height: usize, width: usize) -> ScreenFragments {
     let triangles: Vec<Option<ScreenTriangle>> =
         faces.par_iter().map(|f| ScreenTriangle::new(f.map(|v| screen[v as usize]), height, width)).collect();
     let n_bands = height.div_ceil(BAND_ROWS);
@@ -124,7 +129,7 @@ pub fn rasterise_screen(
                 }
             }
         });
-    Ok(fragments)
+    fragments
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 //! It was NumPy over the fragments, about 0.25 s per view of a 200K-face mesh (three views are
 //! drawn by `uvfeat compute`): here in parallel bands of rows.
 
-use super::screen::rasterise_screen;
+use super::screen::rasterise_faces;
 use crate::error::{Result, UvfeatError};
 use crate::mesh::checked_indices;
 use glam::DVec3;
@@ -100,8 +100,7 @@ pub fn shaded_view(
     let screen: Vec<[f64; 3]> =
         view.par_iter().map(|p| [(p[0] - frame.left) * frame.scale, (frame.top - p[1]) * frame.scale, p[2]]).collect();
     let drawn: Vec<[u32; 3]> = corners.into_par_iter().filter(|t| faces_viewer(&screen, t, front)).collect();
-    let drawn_rows: Vec<[i64; 3]> = drawn.iter().map(|t| t.map(i64::from)).collect();
-    let fragments = rasterise_screen(&screen, &drawn_rows, frame.height, frame.width)?;
+    let fragments = rasterise_faces(&screen, &drawn, frame.height, frame.width);
     let normals = vertex_normals(view, &drawn);
     let pixel = |k: usize| -> [f64; 4] {
         let Ok(f) = usize::try_from(fragments.face[k]) else { return [0.0; 4] };

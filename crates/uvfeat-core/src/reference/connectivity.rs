@@ -2,7 +2,7 @@
 //! topology and, as in the paper, left out of the reference timings).
 
 use crate::error::{Result, UvfeatError};
-use crate::mesh::{sorted_half_edges, weld_positions};
+use crate::mesh::{compressed_rows, sorted_half_edges, weld_positions};
 use glam::DVec3;
 
 /// Marks a half-edge without a twin (mesh border or non-manifold edge).
@@ -99,24 +99,6 @@ fn twins(faces: &[[u32; 3]], n_vertices: usize) -> (Vec<u32>, Vec<bool>, Vec<(u3
         }
     }
     (twin, boundary, edges)
-}
-
-/// Compressed rows (`start`, `items`) of `(row, item)` pairs.
-fn compressed_rows(rows: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> (Vec<u32>, Vec<u32>) {
-    let mut start = vec![0u32; rows + 1];
-    for (row, _) in pairs.clone() {
-        start[row as usize + 1] += 1;
-    }
-    for r in 0..rows {
-        start[r + 1] += start[r];
-    }
-    let mut fill = start.clone();
-    let mut items = vec![0u32; start[rows] as usize];
-    for (row, item) in pairs {
-        items[fill[row as usize] as usize] = item;
-        fill[row as usize] += 1;
-    }
-    (start, items)
 }
 
 #[cfg(test)]

@@ -78,9 +78,15 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
     };
     let neighbours = face_neighbours(&welded_faces);
     let own_normals = face_normals(&welded);
-    let charted = charted_positions(&welded, &welded_faces, &own_normals, &smoothed_normals(&own_normals, &neighbours));
-    let normals = face_normals(&charted);
-    let smoothed = smoothed_normals(&normals, &neighbours);
+    let own_smoothed = smoothed_normals(&own_normals, &neighbours);
+    let (charted, normals, smoothed) = match charted_positions(&welded, &welded_faces, &own_normals, &own_smoothed) {
+        Some(charted) => {
+            let normals = face_normals(&charted);
+            let smoothed = smoothed_normals(&normals, &neighbours);
+            (charted, normals, smoothed)
+        }
+        None => (welded, own_normals, own_smoothed),
+    };
     let centroids: Vec<DVec3> =
         welded_faces.par_iter().map(|t| t.iter().map(|&v| charted[v as usize]).sum::<DVec3>() / 3.0).collect();
     let graph = FaceGraph {
