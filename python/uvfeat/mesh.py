@@ -197,14 +197,15 @@ class Mesh:
         """A copy of this mesh with an automatic multi-chart atlas (see :mod:`uvfeat.unwrap`).
 
         ``method="charts"`` (default) cuts uvfeat's own normal-cone charts (a fraction of a second
-        for 100K faces); ``method="xatlas"`` runs xatlas (seconds per 10K faces), whose atlas is
+        for 100K faces); ``method="xatlas"`` runs xatlas (seconds per 10K faces). Either atlas is
         cached on disk by the mesh's content, so a second call on the same mesh does not unwrap
         again (``cache=False`` always unwraps).
         """
         from .unwrap import UNWRAP_METHODS, chart_uvs, xatlas_uvs
 
         if method == "charts":
-            uvs, uv_faces = chart_uvs(self._positions, self._faces, resolution=resolution, padding=padding)
+            uvs, uv_faces = chart_uvs(self._positions, self._faces, resolution=resolution, padding=padding,
+                                      cache=cache)
         elif method == "xatlas":
             uvs, uv_faces = xatlas_uvs(self._positions, self._faces, resolution=resolution, padding=padding,
                                        cache=cache)
