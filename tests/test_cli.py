@@ -93,3 +93,15 @@ def test_compute_and_compare_take_the_surfel_quadrature(tmp_path, capsys):
     assert "quadrature" in capsys.readouterr().err
     assert main(["compare", str(path), "--radius", "0.3", "--resolution", "256", "--compute-resolution", "64",
                  "--quadrature", "surfels", "--truth-levels", "1", "--no-pictures", "--json"]) == 0
+
+
+def test_the_program_returns_mains_status_and_leaves_nothing_for_shutdowns_collector(tmp_path):
+    import gc
+
+    from uvfeat.cli import run
+
+    try:
+        assert run(["compute", str(tmp_path / "missing.obj"), "--out", str(tmp_path / "out")]) == 2
+        assert gc.get_freeze_count() > 0
+    finally:
+        gc.unfreeze()

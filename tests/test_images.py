@@ -274,3 +274,22 @@ def test_save_atlas_pictures(tmp_path):
         rgb = np.asarray(picture)[..., :3].astype(float) / 255 * 2 - 1
     norms = np.linalg.norm(rgb[covered], axis=-1)
     assert np.median(np.abs(norms - 1)) < 0.02
+
+
+def test_save_figure_crops_as_matplotlib_tight_without_its_extra_draw(tmp_path, monkeypatch):
+    """The crop measured without drawing gives the pixels of ``bbox_inches="tight"``, for a map
+    with a long title (wider than the figure) and for the 3D views with their colour bar."""
+    texture = np.linspace(-1.0, 1.0, 64 * 64).reshape(64, 64)
+    torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
+    figures = []
+    monkeypatch.setattr(images, "save_figure", lambda fig, path, **options: figures.append((fig, options)))
+    images.save_feature_figure(tmp_path / "map.png", "mean_curvature", texture, 0.1, "a_scan_with_a_name_" * 4)
+    uvfeat.plot(torus, torus.positions[:, 2], feature="mean_curvature", radius=["2%"], path=tmp_path / "3d.png")
+    assert len(figures) == 2
+    for k, (fig, options) in enumerate(figures):
+        monkeypatch.undo()
+        images.save_figure(fig, tmp_path / f"ours{k}.png", **options)
+        fig.savefig(tmp_path / f"tight{k}.png", bbox_inches="tight", pil_kwargs={"compress_level": 1}, **options)
+        with Image.open(tmp_path / f"ours{k}.png") as ours, Image.open(tmp_path / f"tight{k}.png") as tight:
+            assert ours.size == tight.size
+            np.testing.assert_array_equal(np.asarray(ours), np.asarray(tight))

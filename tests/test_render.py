@@ -171,3 +171,14 @@ def test_a_closed_mesh_wound_inwards_shows_its_near_side():
     inward = render_values(torus.positions, torus.faces[:, ::-1], height, "viridis", -0.5, 0.5, view=(60.0, 0.0),
                            up="z")
     np.testing.assert_allclose(inward, outward, atol=1e-9)
+
+
+def test_front_side_of_closed_open_and_inward_meshes():
+    from uvfeat.render import front_side
+
+    torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
+    assert front_side(torus.positions, torus.faces) == 1
+    assert front_side(torus.positions, torus.faces[:, ::-1]) == -1
+    assert front_side(torus.positions, torus.faces[1:]) == 0
+    with pytest.raises(uvfeat.UvfeatError, match="vertex"):
+        front_side(torus.positions, torus.faces + len(torus.positions))

@@ -15,6 +15,7 @@ __all__ = [
     "shape",
     "unwrap",
     "shaded_view",
+    "front_side",
     "atlas_bytes",
     "ComputeSettings",
     "FeatureMaps",
@@ -64,6 +65,9 @@ def shaded_view(
     front: int,
 ) -> NDArray[np.float64]:
     """RGBA picture of per-vertex ``values`` on the faces seen from ``front``, shaded by a headlight."""
+
+def front_side(positions: NDArray[np.float64], faces: NDArray[np.int64]) -> int:
+    """0 for an open mesh (both sides show), 1 for a closed one wound outwards, -1 inwards."""
 
 @final
 class Topology:

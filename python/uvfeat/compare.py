@@ -143,7 +143,7 @@ def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike)
     """Per feature, ``compare_<feature>.png`` (parametric | reference | absolute difference, same
     view, shared colour range) and ``error_<feature>.png`` (the difference alone, larger).
     Returns the paths."""
-    from .images import FEATURE_UNITS, SAVEFIG_OPTIONS, colour_range, offscreen_figure
+    from .images import FEATURE_UNITS, colour_range, offscreen_figure, save_figure
     from .render import draw_vertex_values
 
     os.makedirs(out_dir, exist_ok=True)
@@ -169,12 +169,12 @@ def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike)
         fig.suptitle(f"{mesh.name}: {name}, r = {comparison.radius:.4g}   parametric {1e3 * t['parametric']:.0f} ms, "
                      f"reference {1e3 * t['reference']:.0f} ms (speed-up {t['speedup']:.2f}x)")
         paths[f"compare_{name}"] = os.path.join(os.fspath(out_dir), f"compare_{name}.png")
-        fig.savefig(paths[f"compare_{name}"], **SAVEFIG_OPTIONS)
+        save_figure(fig, paths[f"compare_{name}"])
         fig = offscreen_figure((7, 6), 110)
         ax = fig.subplots()
         mappable = draw_vertex_values(ax, mesh.positions, mesh.faces, difference, "magma", 0.0, top or 1.0)
         ax.set_title(f"{name}: |parametric - reference| (mean-normalised {err['mean_normalised']:.3g})")
         fig.colorbar(mappable, ax=ax, fraction=0.046, pad=0.04, label=unit)
         paths[f"error_{name}"] = os.path.join(os.fspath(out_dir), f"error_{name}.png")
-        fig.savefig(paths[f"error_{name}"], **SAVEFIG_OPTIONS)
+        save_figure(fig, paths[f"error_{name}"])
     return paths

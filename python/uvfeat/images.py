@@ -106,9 +106,16 @@ def save_atlas_pictures(atlas, out_dir: str | os.PathLike) -> dict[str, str]:
     return paths
 
 
-#: How figures are written: PNG at zlib level 1, which encodes three to four times faster than
-#: level 6 for 10-15 % larger files (a 200K-face mesh's three views: 0.08 s less per picture).
-SAVEFIG_OPTIONS = {"bbox_inches": "tight", "pil_kwargs": {"compress_level": 1}}
+def save_figure(fig, path: str | os.PathLike, **options) -> None:
+    """Writes ``fig`` as a PNG cropped to what it draws, as ``bbox_inches="tight"`` does, at zlib
+    level 1 (three to four times faster to encode than level 6, for 10-15 % larger files: a
+    200K-face mesh's three views take 0.08 s less). The crop is measured without drawing:
+    matplotlib's "tight" draws the whole figure once more to measure it, resampling every image
+    twice (0.06 s of a feature map's 0.26 s), for the same pixels."""
+    import matplotlib
+
+    crop = fig.get_tightbbox(fig.canvas.get_renderer()).padded(matplotlib.rcParams["savefig.pad_inches"])
+    fig.savefig(os.fspath(path), bbox_inches=crop, pil_kwargs={"compress_level": 1}, **options)
 
 #: Features whose sign matters get a diverging colormap centred on 0.
 SIGNED_FEATURES = {"mean_curvature", "gaussian_curvature", "k1", "k2", "shape_index"}
@@ -181,7 +188,7 @@ def save_feature_figure(path: str | os.PathLike, name: str, texture: np.ndarray,
     unit = FEATURE_UNITS.get(name, "")
     ax.set_title(f"{mesh_name} {name} (r = {radius:.4g})".strip())
     fig.colorbar(image, ax=ax, fraction=0.046, pad=0.04, label=unit)
-    fig.savefig(os.fspath(path), transparent=False, **SAVEFIG_OPTIONS)
+    save_figure(fig, path, transparent=False)
 
 
 def feature_picture(name: str, texture: np.ndarray, low: float, high: float) -> np.ndarray:

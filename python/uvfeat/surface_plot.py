@@ -78,7 +78,7 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
     or ``(elevation, azimuth)`` pairs, ``up`` the axis that points up. Runs without a display."""
     import matplotlib
 
-    from .images import FEATURE_UNITS, SAVEFIG_OPTIONS, colour_range, offscreen_figure
+    from .images import FEATURE_UNITS, colour_range, offscreen_figure, save_figure
     from .render import UP_AXES, draw_vertex_values, front_side
 
     if up not in UP_AXES:
@@ -109,7 +109,7 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
                 axes[line, column].set_title(f"r = {label}")
     fig.suptitle(title if title is not None else f"{mesh.name}: {feature}")
     if path is not None:
-        fig.savefig(os.fspath(path), **SAVEFIG_OPTIONS)
+        save_figure(fig, path)
     return fig
 
 

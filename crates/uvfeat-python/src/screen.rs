@@ -5,7 +5,7 @@ use crate::error::guarded;
 use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use uvfeat_core::output::{shaded_view, ColourScale, Front, ViewFrame};
+use uvfeat_core::output::{front_side, shaded_view, ColourScale, Front, ViewFrame};
 
 /// `(height / s, width / s, 4)` RGBA picture of `values` per vertex on `faces`, whose vertices are
 /// at view coordinates `view` (x right, y up, z towards the viewer), through `palette` over
@@ -39,4 +39,16 @@ pub fn shaded_view_array<'py>(
     let picture = guarded(py, || shaded_view(view, faces, values, &colours, &frame, front))?;
     let s = supersampling.max(1);
     to_numpy(py, flatten(&picture), &[size.0.div_ceil(s), size.1.div_ceil(s), 4])
+}
+
+/// The side of `faces` a picture shows: 0 (both: the mesh is open), 1 (the counter-clockwise
+/// side: closed, wound outwards) or -1 (closed, wound inwards).
+#[pyfunction(name = "front_side")]
+pub fn front_side_of(py: Python<'_>, positions: PyReadonlyArray2<'_, f64>, faces: PyReadonlyArray2<'_, i64>) -> PyResult<i32> {
+    let (positions, faces) = (rows::<f64, 3>(&positions, "positions")?, rows::<i64, 3>(&faces, "faces")?);
+    Ok(match guarded(py, || front_side(positions, faces))? {
+        Front::Both => 0,
+        Front::CounterClockwise => 1,
+        Front::Clockwise => -1,
+    })
 }

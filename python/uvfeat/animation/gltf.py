@@ -24,7 +24,9 @@ PATH_WIDTHS = {"translation": 3, "rotation": 4, "scale": 3}
 
 
 def _transform(matrix: np.ndarray, points: np.ndarray) -> np.ndarray:
-    return points @ matrix[:3, :3].T + matrix[:3, 3]
+    # einsum, not BLAS products (here and for the morph targets): OpenBLAS's threads spin on the
+    # cores after a large product, slowing the frame's features that follow (uvfeat.render).
+    return np.einsum("ij,vj->vi", matrix[:3, :3], points) + matrix[:3, 3]
 
 
 def linear_blend_skinning(points: np.ndarray, joints: np.ndarray, weights: np.ndarray,
@@ -173,7 +175,7 @@ class GltfAnimation:
             points = primitive.positions
             weights = pose.weights.get(primitive.node)
             if primitive.targets is not None and weights is not None and np.any(weights):
-                points = points + np.tensordot(weights, primitive.targets, axes=1)
+                points = points + np.einsum("t,tvi->vi", weights, primitive.targets)
             if primitive.skin is None:
                 parts.append(_transform(world[primitive.node], points))
                 continue

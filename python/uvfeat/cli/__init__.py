@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import sys
 
 from .._core import __version__
@@ -38,5 +39,14 @@ def main(argv: list[str] | None = None) -> int:
         return 2
 
 
+def run(argv: list[str] | None = None) -> int:
+    """The ``uvfeat`` program: :func:`main`, then a quick exit. Interpreter shutdown runs the
+    garbage collector over every object the imports made (matplotlib's alone take 0.15 s of a
+    2.5 s ``uvfeat compute``); freezing them skips that, and reference counting still frees them."""
+    code = main(argv)
+    gc.freeze()
+    return code
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run())

@@ -3,12 +3,14 @@
 //! shaded pictures of per-vertex values on the mesh (the 3D pictures).
 
 mod feature_map;
+mod front_side;
 mod neighbourhood_tiles;
 mod per_vertex;
 mod screen;
 mod shaded_view;
 
 pub use feature_map::{FeatureMaps, MapSummary, SEVERAL_SHEETS};
+pub use front_side::front_side;
 pub use neighbourhood_tiles::{neighbourhood_tile, NeighbourhoodTile};
 pub use per_vertex::{per_corner, per_vertex, per_vertex_directions};
 pub use screen::{rasterise_screen, ScreenFragments, NO_FACE};
