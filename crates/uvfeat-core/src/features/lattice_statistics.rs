@@ -36,7 +36,6 @@ struct Lanes {
     valid: [f32; LANES],
     rim: [f32; LANES],
     area: [f32; LANES],
-    area2: [f32; LANES],
     elevation_w: [f32; LANES],
     elevation_wg: [f32; LANES],
     radial_wg: [f32; LANES],
@@ -118,7 +117,7 @@ pub fn lattice_statistics(
             sums(&lanes.curvature_w, &lanes.curvature_wg, Some(&lanes.curvature_wg2)),
             f64::from(thresholds.shift),
         ),
-        geodesic_disk: WeightedSums { w: total(&lanes.area), w2: total(&lanes.area2), wg: 0.0, wg2: 0.0 },
+        geodesic_disk: WeightedSums { w: total(&lanes.area), w2: 0.0, wg: 0.0, wg2: 0.0 },
     };
     let mut counts = SampleCounts { valid: total(&lanes.valid) as u32, ..SampleCounts::default() };
     for lost in &lattice.lost {
@@ -211,7 +210,6 @@ fn sums<const NORMALS: bool>(
             lanes.valid[l] += if accepted { 1.0 } else { 0.0 };
             lanes.rim[l] += if accepted && dw2 >= t.rim2 { 1.0 } else { 0.0 };
             lanes.area[l] += a;
-            lanes.area2[l] += a * a;
             lanes.elevation_w[l] += a * distance;
             lanes.elevation_wg[l] += a * elevation;
             lanes.radial_wg[l] += a * d2 * t.inverse_radius;
@@ -220,8 +218,10 @@ fn sums<const NORMALS: bool>(
             lanes.curvature_w[l] += weight;
             lanes.curvature_wg[l] += weight * shifted;
             lanes.curvature_wg2[l] += weight * shifted * shifted;
-            lanes.bending_w[l] += curved;
-            lanes.bending_wg[l] += curved * bend[l] * inverse_d2;
+            if NORMALS {
+                lanes.bending_w[l] += curved;
+                lanes.bending_wg[l] += curved * bend[l] * inverse_d2;
+            }
         }
     }
     lanes
