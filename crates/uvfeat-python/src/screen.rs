@@ -44,7 +44,11 @@ pub fn shaded_view_array<'py>(
 /// The side of `faces` a picture shows: 0 (both: the mesh is open), 1 (the counter-clockwise
 /// side: closed, wound outwards) or -1 (closed, wound inwards).
 #[pyfunction(name = "front_side")]
-pub fn front_side_of(py: Python<'_>, positions: PyReadonlyArray2<'_, f64>, faces: PyReadonlyArray2<'_, i64>) -> PyResult<i32> {
+pub fn front_side_of(
+    py: Python<'_>,
+    positions: PyReadonlyArray2<'_, f64>,
+    faces: PyReadonlyArray2<'_, i64>,
+) -> PyResult<i32> {
     let (positions, faces) = (rows::<f64, 3>(&positions, "positions")?, rows::<i64, 3>(&faces, "faces")?);
     Ok(match guarded(py, || front_side(positions, faces))? {
         Front::Both => 0,

@@ -13,7 +13,7 @@ use crate::mesh::checked_indices;
 use rayon::prelude::*;
 
 /// Rows per band of the parallel rasterisation.
-const BAND_ROWS: usize = 16;
+pub(super) const BAND_ROWS: usize = 16;
 
 /// No triangle covers the pixel.
 pub const NO_FACE: i64 = -1;
@@ -82,33 +82,55 @@ pub fn rasterise_screen(
 }
 
 /// [`rasterise_screen`] of faces whose corners are known to index `screen`.
-pub(super) fn rasterise_faces(screen: &[[f64; 3]], faces: &[[u32; 3]], height: usize, width: usize) -> ScreenFragments {
+fn rasterise_faces(screen: &[[f64; 3]], faces: &[[u32; 3]], height: usize, width: usize) -> ScreenFragments {
+    let bands = rasterise_in_bands(screen, faces, height, width, BAND_ROWS, |_, band| (band.face, band.weights));
+    let (face, weights) = bands.into_iter().unzip::<_, _, Vec<_>, Vec<_>>();
+    ScreenFragments { face: face.concat(), weights: weights.concat() }
+}
+
+/// The fragments of one band of rows, row-major (see [`ScreenFragments`]).
+pub(super) struct BandFragments {
+    /// Face id per pixel, [`NO_FACE`] where no triangle covers it.
+    pub face: Vec<i64>,
+    /// Barycentric weights of the face's three corners at the pixel centre.
+    pub weights: Vec<[f64; 3]>,
+}
+
+/// Rasterises `faces` as [`rasterise_screen`] does, in bands of `band_rows` rows from the top, and
+/// hands each band's fragments with its first row to `consume` as soon as they are drawn (in
+/// parallel; results in band order), so that a caller shading them reads them while they are in
+/// cache instead of from a whole picture's buffers (32 bytes a pixel, 19 MB for a 3D view).
+pub(super) fn rasterise_in_bands<R: Send>(
+    screen: &[[f64; 3]],
+    faces: &[[u32; 3]],
+    height: usize,
+    width: usize,
+    band_rows: usize,
+    consume: impl Fn(usize, BandFragments) -> R + Sync,
+) -> Vec<R> {
+    let band_rows = band_rows.max(1);
     let triangles: Vec<Option<ScreenTriangle>> =
         faces.par_iter().map(|f| ScreenTriangle::new(f.map(|v| screen[v as usize]), height, width)).collect();
-    let n_bands = height.div_ceil(BAND_ROWS);
-    let mut band_faces: Vec<Vec<u32>> = vec![Vec::new(); n_bands];
+    let mut band_faces: Vec<Vec<u32>> = vec![Vec::new(); height.div_ceil(band_rows)];
     for (f, triangle) in triangles.iter().enumerate() {
         if let Some(t) = triangle {
-            for band in band_faces.iter_mut().take(t.rows.1 / BAND_ROWS + 1).skip(t.rows.0 / BAND_ROWS) {
+            for band in band_faces.iter_mut().take(t.rows.1 / band_rows + 1).skip(t.rows.0 / band_rows) {
                 band.push(f as u32);
             }
         }
     }
-    let mut fragments =
-        ScreenFragments { face: vec![NO_FACE; height * width], weights: vec![[0.0; 3]; height * width] };
-    fragments
-        .face
-        .par_chunks_mut(BAND_ROWS * width.max(1))
-        .zip(fragments.weights.par_chunks_mut(BAND_ROWS * width.max(1)))
-        .zip(band_faces.par_iter())
+    band_faces
+        .par_iter()
         .enumerate()
-        .for_each(|(band, ((face_out, weights_out), faces_here))| {
-            let first_row = band * BAND_ROWS;
-            let mut depth_buffer = vec![f64::NEG_INFINITY; face_out.len()];
+        .map(|(band, faces_here)| {
+            let first_row = band * band_rows;
+            let rows = band_rows.min(height - first_row);
+            let pixels = rows * width;
+            let mut fragments = BandFragments { face: vec![NO_FACE; pixels], weights: vec![[0.0; 3]; pixels] };
+            let mut depth_buffer = vec![f64::NEG_INFINITY; pixels];
             for &f in faces_here {
                 let t = triangles[f as usize].as_ref().expect("only faces with pixels are binned");
-                let rows = t.rows.0.max(first_row)..=t.rows.1.min(first_row + face_out.len() / width - 1);
-                for y in rows {
+                for y in t.rows.0.max(first_row)..=t.rows.1.min(first_row + rows - 1) {
                     let dy = y as f64 + 0.5 - t.corner[1];
                     for x in t.columns.0..=t.columns.1 {
                         let dx = x as f64 + 0.5 - t.corner[0];
@@ -122,14 +144,15 @@ pub(super) fn rasterise_faces(screen: &[[f64; 3]], faces: &[[u32; 3]], height: u
                         let pixel = (y - first_row) * width + x;
                         if depth > depth_buffer[pixel] {
                             depth_buffer[pixel] = depth;
-                            face_out[pixel] = i64::from(f);
-                            weights_out[pixel] = [w0, w1, w2];
+                            fragments.face[pixel] = i64::from(f);
+                            fragments.weights[pixel] = [w0, w1, w2];
                         }
                     }
                 }
             }
-        });
-    fragments
+            consume(first_row, fragments)
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -4,9 +4,9 @@
 //! normal, and averaged down from supersampled pixels.
 //!
 //! It was NumPy over the fragments, about 0.25 s per view of a 200K-face mesh (three views are
-//! drawn by `uvfeat compute`): here in parallel bands of rows.
+//! drawn by `uvfeat compute`): here in parallel bands of rows, each shaded as soon as it is drawn.
 
-use super::screen::rasterise_faces;
+use super::screen::{rasterise_in_bands, BAND_ROWS};
 use crate::error::{Result, UvfeatError};
 use crate::mesh::checked_indices;
 use glam::DVec3;
@@ -100,17 +100,24 @@ pub fn shaded_view(
     let screen: Vec<[f64; 3]> =
         view.par_iter().map(|p| [(p[0] - frame.left) * frame.scale, (frame.top - p[1]) * frame.scale, p[2]]).collect();
     let drawn: Vec<[u32; 3]> = corners.into_par_iter().filter(|t| faces_viewer(&screen, t, front)).collect();
-    let fragments = rasterise_faces(&screen, &drawn, frame.height, frame.width);
     let normals = vertex_normals(view, &drawn);
-    let pixel = |k: usize| -> [f64; 4] {
-        let Ok(f) = usize::try_from(fragments.face[k]) else { return [0.0; 4] };
-        let (t, w) = (drawn[f].map(|v| v as usize), fragments.weights[k]);
-        let [r, g, b] = colours.colour(interpolated_value(t.map(|v| values[v]), w));
-        let normal = (0..3).map(|c| w[c] * normals[t[c]]).sum::<DVec3>();
-        let light = AMBIENT + (1.0 - AMBIENT) * normal.z.abs() / normal.length().max(1e-300);
-        [r * light, g * light, b * light, 1.0]
-    };
-    Ok(averaged_down(frame, pixel))
+    // Bands of whole blocks of supersampled rows, each shaded and averaged down as it is drawn.
+    let s = frame.supersampling;
+    let band_rows = s * BAND_ROWS.div_ceil(s);
+    let bands = rasterise_in_bands(&screen, &drawn, frame.height, frame.width, band_rows, |first_row, band| {
+        let pixel = |y: usize, x: usize| -> [f64; 4] {
+            let k = (y - first_row) * frame.width + x;
+            let Ok(f) = usize::try_from(band.face[k]) else { return [0.0; 4] };
+            let (t, w) = (drawn[f].map(|v| v as usize), band.weights[k]);
+            let [r, g, b] = colours.colour(interpolated_value(t.map(|v| values[v]), w));
+            let normal = (0..3).map(|c| w[c] * normals[t[c]]).sum::<DVec3>();
+            let light = AMBIENT + (1.0 - AMBIENT) * normal.z.abs() / normal.length().max(1e-300);
+            [r * light, g * light, b * light, 1.0]
+        };
+        let rows = band_rows.min(frame.height - first_row);
+        averaged_down(frame, first_row / s..(first_row + rows).div_ceil(s), pixel)
+    });
+    Ok(bands.concat())
 }
 
 /// Whether face `t` can be seen from `front` (screen y points down, so a face turning
@@ -152,25 +159,34 @@ fn interpolated_value(corner_values: [f64; 3], weights: [f64; 3]) -> f64 {
     }
 }
 
-/// The picture averaged down by `frame.supersampling` (padded with empty pixels to whole blocks),
-/// colours weighted by coverage, so edges blend with the background instead of darkening.
-fn averaged_down(frame: &ViewFrame, pixel: impl Fn(usize) -> [f64; 4] + Sync) -> Vec<[f64; 4]> {
+/// Rows `rows` of the picture averaged down by `frame.supersampling` (padded with empty pixels to
+/// whole blocks) from the rasterised `pixel(y, x)`, colours weighted by coverage, so edges blend
+/// with the background instead of darkening.
+fn averaged_down(
+    frame: &ViewFrame,
+    rows: std::ops::Range<usize>,
+    pixel: impl Fn(usize, usize) -> [f64; 4],
+) -> Vec<[f64; 4]> {
     let s = frame.supersampling;
-    let (height, width) = (frame.height.div_ceil(s), frame.width.div_ceil(s));
-    let mut picture = vec![[0.0; 4]; height * width];
-    picture.par_chunks_mut(width.max(1)).enumerate().for_each(|(row, out)| {
-        for (column, block) in out.iter_mut().enumerate() {
+    let width = frame.width.div_ceil(s);
+    let mut picture = Vec::with_capacity(rows.len() * width);
+    for row in rows {
+        for column in 0..width {
             let mut sum = [0.0; 4];
             for y in (row * s..(row + 1) * s).filter(|&y| y < frame.height) {
                 for x in (column * s..(column + 1) * s).filter(|&x| x < frame.width) {
-                    let p = pixel(y * frame.width + x);
+                    let p = pixel(y, x);
                     (0..4).for_each(|c| sum[c] += p[c]);
                 }
             }
             let alpha = sum[3] / (s * s) as f64;
-            *block = if alpha > 0.0 { [sum[0] / sum[3], sum[1] / sum[3], sum[2] / sum[3], alpha] } else { [0.0; 4] };
+            picture.push(if alpha > 0.0 {
+                [sum[0] / sum[3], sum[1] / sum[3], sum[2] / sum[3], alpha]
+            } else {
+                [0.0; 4]
+            });
         }
-    });
+    }
     picture
 }
 
@@ -225,6 +241,21 @@ mod tests {
         assert_eq!(pixels[0], [1.0, 0.0, 0.0, 1.0]);
         assert_eq!(pixels[1], [1.0, 0.0, 0.0, 0.5]);
         assert_eq!(pixels[3], [1.0, 0.0, 0.0, 0.25]);
+    }
+
+    #[test]
+    fn a_picture_over_several_bands_is_whole_and_the_same_on_one_thread() {
+        // 40 rows averaged by 3 are drawn in bands of 18: 14 x 14 pixels, the last row and column
+        // a third covered.
+        let pixels = square([1.0; 4], Front::Both, 3, 40).unwrap();
+        assert_eq!(pixels.len(), 14 * 14);
+        assert!(pixels[..13 * 14].chunks(14).all(|row| row[..13].iter().all(|p| *p == [1.0, 0.0, 0.0, 1.0])));
+        assert!((pixels[13 * 14][3] - 1.0 / 3.0).abs() < 1e-12 && (pixels[13][3] - 1.0 / 3.0).abs() < 1e-12);
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        assert_eq!(
+            pool.install(|| square([0.3, 0.9, 0.5, 0.1], Front::Both, 3, 40)).unwrap(),
+            square([0.3, 0.9, 0.5, 0.1], Front::Both, 3, 40).unwrap()
+        );
     }
 
     #[test]
