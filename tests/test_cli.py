@@ -95,13 +95,16 @@ def test_compute_and_compare_take_the_surfel_quadrature(tmp_path, capsys):
                  "--quadrature", "surfels", "--truth-levels", "1", "--no-pictures", "--json"]) == 0
 
 
-def test_the_program_returns_mains_status_and_leaves_nothing_for_shutdowns_collector(tmp_path):
+def test_the_program_returns_mains_status_with_the_collector_set_for_a_short_run(tmp_path):
     import gc
 
-    from uvfeat.cli import run
+    from uvfeat.cli import COLLECT_EVERY, run
 
+    threshold = gc.get_threshold()
     try:
         assert run(["compute", str(tmp_path / "missing.obj"), "--out", str(tmp_path / "out")]) == 2
         assert gc.get_freeze_count() > 0
+        assert gc.get_threshold()[0] == COLLECT_EVERY
     finally:
         gc.unfreeze()
+        gc.set_threshold(*threshold)
