@@ -9,6 +9,7 @@
 //! (up to 66 % of a neighbourhood's area was lost that way).
 
 use crate::mesh::{Topology, NO_CORNER};
+use rayon::prelude::*;
 
 /// Principal stretches of the parameterisation at a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,6 +81,89 @@ pub fn corner_metrics(topology: &Topology, face_metric: impl Fn(usize) -> Option
                 }
             },
         )
+        .collect()
+}
+
+/// Cosine of the angle between a face's normal and a vertex normal past which the face is rough.
+const ROUGH_COSINE: f64 = 0.866;
+
+/// Rings of faces over which [`seam_corner_metrics`] averages.
+pub const SEAM_METRIC_RINGS: usize = 8;
+
+/// The corner metrics the seam maps read (`mesh::seam_maps`): at the corners of seams between
+/// two charts, `corner_metrics` averaged, as inverses, over [`SEAM_METRIC_RINGS`] more rings of
+/// faces within each corner's chart (each pass: a face takes the mean of its corners, a corner the
+/// mean of its faces); elsewhere `corner_metrics` as they are.
+///
+/// A seam map carries the samples of a whole neighbourhood across, not only those at the edge,
+/// and a one-ring metric carries a scan's noise: on the own charts of a noisy 200K torus it sent
+/// the balls of 3,090 of 5,554 groups' centres past their sampling disks at r = 2 % (42.6K of
+/// 128.7K texels summed a grown lattice); over 8 rings, 1,229 (17.8K texels), with H's error
+/// against the reference 10.10 -> 10.03 % and the features' CPU time 1.10-1.23 -> 0.83-0.88 s.
+/// A chart's own seams keep their one-ring metrics: at a lat-long pole, where the metric changes
+/// fast along the seam, the rings doubled the clean sphere's error at r = 4 %.
+pub fn seam_corner_metrics(
+    topology: &Topology,
+    corner_metrics: &[[f64; 3]],
+    positions: &[glam::DVec3],
+    normals: &[glam::DVec3],
+) -> Vec<[f64; 3]> {
+    let rough = |face: usize| {
+        let [a, b, c] = topology.faces[face].map(|v| positions[v as usize]);
+        let normal = (b - a).cross(c - a).normalize_or_zero();
+        topology.faces[face].iter().any(|&v| normal.dot(normals[v as usize]) < ROUGH_COSINE)
+    };
+    let mut between_charts = vec![false; corner_metrics.len()];
+    for side in topology
+        .sides
+        .iter()
+        .filter(|side| side.adjacent_chart >= 0 && side.adjacent_chart != side.chart && rough(side.face as usize))
+    {
+        let (face, local) = (side.face as usize, side.local as usize);
+        for corner in [local, (local + 1) % 3] {
+            let group = topology.corner_groups[face][corner];
+            if group != NO_CORNER {
+                between_charts[group as usize] = true;
+            }
+        }
+    }
+    if !between_charts.contains(&true) {
+        return corner_metrics.to_vec();
+    }
+    let mut inverse: Vec<Option<[f64; 3]>> = corner_metrics.par_iter().map(|m| invert(*m)).collect();
+    for _ in 0..SEAM_METRIC_RINGS {
+        let face_means: Vec<Option<[f64; 3]>> = topology
+            .corner_groups
+            .par_iter()
+            .map(|corners| {
+                let [a, b, c] = corners.map(|g| if g == NO_CORNER { None } else { inverse[g as usize] });
+                Some((a?, b?, c?)).map(|(a, b, c)| std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0))
+            })
+            .collect();
+        let start = &topology.corner_face_start;
+        inverse = (0..inverse.len())
+            .into_par_iter()
+            .map(|corner| {
+                let faces = &topology.corner_faces[start[corner] as usize..start[corner + 1] as usize];
+                let (sum, count) = faces
+                    .iter()
+                    .filter_map(|&f| face_means[f as usize])
+                    .fold(([0.0f64; 3], 0usize), |(sum, count), mean| {
+                        (std::array::from_fn(|k| sum[k] + mean[k]), count + 1)
+                    });
+                if count > 0 {
+                    Some(sum.map(|x| x / count as f64))
+                } else {
+                    inverse[corner]
+                }
+            })
+            .collect();
+    }
+    inverse
+        .into_iter()
+        .zip(corner_metrics)
+        .zip(between_charts)
+        .map(|((smoothed, own), between)| if between { smoothed.and_then(invert).unwrap_or(*own) } else { *own })
         .collect()
 }
 

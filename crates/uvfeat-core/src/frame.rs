@@ -1,7 +1,7 @@
 //! Per-frame mesh quantities (DESIGN.md §1.9, animation): everything that depends on positions and is
 //! recomputed for each frame, on top of the reused topology.
 
-use crate::distortion::{corner_metrics, interpolated_metric, Distortion};
+use crate::distortion::{corner_metrics, interpolated_metric, seam_corner_metrics, Distortion};
 use crate::error::Result;
 use crate::mesh::{seam_maps, vertex_normals, Jacobian, SeamMap, Topology};
 use glam::{DMat2, DVec2, DVec3};
@@ -159,7 +159,7 @@ impl Frame {
             .zip(&face_metrics)
             .for_each(|(distortion, metric)| *distortion = metric.map_or(ZERO_DISTORTION, Distortion::from_metric));
         self.corner_metrics = corner_metrics(topology, |f| face_metrics[f]);
-        let metrics = &self.corner_metrics;
+        let metrics = seam_corner_metrics(topology, &self.corner_metrics, &self.positions, &self.normals);
         self.seam_maps =
             seam_maps(topology, |face, corner| metrics[topology.corner_groups[face as usize][corner] as usize]);
         Ok(())

@@ -3,9 +3,10 @@
 
 use super::adjacency::{face_links, walk_faces, WalkFace};
 use super::charts::chart_ids;
-use super::corners::corner_groups;
+use super::corners::{corner_groups, NO_CORNER};
 use super::edges::{classify_edges, uv_of_vertex, EdgeCounts};
 use super::sides::{boundary_sides, BoundarySide};
+use super::vertex_sort::compressed_rows;
 use super::weld::weld_positions;
 use super::{has_repeated_corner, uv_is_degenerate, uv_signed_area2, TriangleMesh};
 use crate::error::{Result, UvfeatError};
@@ -49,6 +50,11 @@ pub struct Topology {
     pub corner_groups: Vec<[u32; 3]>,
     /// Number of atlas corners.
     pub n_corners: usize,
+    /// The faces around each atlas corner, as compressed rows: those of corner `c` are
+    /// `corner_faces[corner_face_start[c]..corner_face_start[c + 1]]`.
+    pub corner_face_start: Vec<u32>,
+    /// See [`Topology::corner_face_start`].
+    pub corner_faces: Vec<u32>,
     /// Counts for reports.
     pub diagnostics: TopologyDiagnostics,
 }
@@ -79,7 +85,10 @@ impl Topology {
         }
         // The corners' groups need neither the edges nor the charts (a face has a chart unless it
         // is excluded): built beside them (the 200K ellipsoid's topology: 66-100 -> 45-70 ms).
-        let ((classes, face_chart, n_charts, sides, walk_faces), (corner_groups, n_corners)) = rayon::join(
+        let (
+            (classes, face_chart, n_charts, sides, walk_faces),
+            (corner_groups, n_corners, corner_face_start, corner_faces),
+        ) = rayon::join(
             || {
                 let classes = classify_edges(&faces, &corner_uvs, &excluded);
                 let pairs = classes.interior_pairs.iter().map(|(x, y)| (x.face, y.face));
@@ -88,7 +97,15 @@ impl Topology {
                 let walk_faces = walk_faces(&corner_uvs, &face_links(faces.len(), &classes.interior_pairs, &sides));
                 (classes, face_chart, n_charts, sides, walk_faces)
             },
-            || corner_groups(&faces, &corner_uvs, &excluded),
+            || {
+                let (groups, n_corners) = corner_groups(&faces, &corner_uvs, &excluded);
+                let around = groups
+                    .iter()
+                    .enumerate()
+                    .flat_map(|(f, corners)| corners.iter().filter(|&&c| c != NO_CORNER).map(move |&c| (c, f as u32)));
+                let (start, faces_around) = compressed_rows(n_corners, around);
+                (groups, n_corners, start, faces_around)
+            },
         );
         let mirrored_uv_faces =
             corner_uvs.iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();
@@ -109,6 +126,8 @@ impl Topology {
             walk_faces,
             corner_groups,
             n_corners,
+            corner_face_start,
+            corner_faces,
             diagnostics,
         })
     }
