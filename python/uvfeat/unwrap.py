@@ -141,7 +141,8 @@ def xatlas_uvs(positions: np.ndarray, faces: np.ndarray, *, resolution: int = 10
                    lambda: _unwrap(xatlas, positions, faces, chart, pack))
 
 
-def _cached(positions: np.ndarray, faces: np.ndarray, options: tuple, build: str | None, make) -> tuple[np.ndarray, np.ndarray]:
+def _cached(positions: np.ndarray, faces: np.ndarray, options: tuple, build: str | None,
+            make) -> tuple[np.ndarray, np.ndarray]:
     """The atlas ``make()`` returns, read from the cache when it holds one for this mesh, these
     options and this ``build`` of the unwrapper (``None``: no caching), written there otherwise."""
     folder = cache_dir() if build is not None else None

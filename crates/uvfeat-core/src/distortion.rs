@@ -10,6 +10,7 @@
 
 use crate::mesh::{Topology, NO_CORNER};
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// Principal stretches of the parameterisation at a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -100,16 +101,16 @@ pub const SEAM_METRIC_RINGS: usize = 8;
 /// and a one-ring metric carries a scan's noise: on the own charts of a noisy 200K torus it sent
 /// the balls of 3,090 of 5,554 groups' centres past their sampling disks at r = 2 % (42.6K of
 /// 128.7K texels summed a grown lattice); over 8 rings, 1,229 (17.8K texels), with H's error
-/// against the reference 10.10 -> 10.03 % and the features' CPU time 1.10-1.23 -> 0.83-0.88 s.
+/// against the reference 10.10 -> 10.03 % and the features' CPU time 1.35-1.53 -> 1.10-1.14 s.
 /// Smooth seams keep their one-ring metrics: on Spot's coarse artist atlas the rings raised the
 /// baked seams' error past `test_bake`'s bound, and at a lat-long pole, where the metric changes
 /// fast along a chart's own seam, they doubled the clean sphere's error at r = 4 %.
-pub fn seam_corner_metrics(
+pub fn seam_corner_metrics<'a>(
     topology: &Topology,
-    corner_metrics: &[[f64; 3]],
+    corner_metrics: &'a [[f64; 3]],
     positions: &[glam::DVec3],
     normals: &[glam::DVec3],
-) -> Vec<[f64; 3]> {
+) -> Cow<'a, [[f64; 3]]> {
     let rough = |face: usize| {
         let [a, b, c] = topology.faces[face].map(|v| positions[v as usize]);
         let normal = (b - a).cross(c - a).normalize_or_zero();
@@ -130,7 +131,7 @@ pub fn seam_corner_metrics(
         }
     }
     if !between_charts.contains(&true) {
-        return corner_metrics.to_vec();
+        return Cow::Borrowed(corner_metrics);
     }
     let mut inverse: Vec<Option<[f64; 3]>> = corner_metrics.par_iter().map(|m| invert(*m)).collect();
     for _ in 0..SEAM_METRIC_RINGS {
@@ -166,7 +167,8 @@ pub fn seam_corner_metrics(
         .zip(corner_metrics)
         .zip(between_charts)
         .map(|((smoothed, own), between)| if between { smoothed.and_then(invert).unwrap_or(*own) } else { *own })
-        .collect()
+        .collect::<Vec<_>>()
+        .into()
 }
 
 /// Inverse of the symmetric 2x2 matrix `[[e, f], [f, g]]`; `None` when (nearly) singular.

@@ -1,5 +1,5 @@
-//! Z-buffer rasterisation of a mesh seen on screen, for the 3D pictures (the Python front's
-//! `uvfeat.render` shades and colours what this finds).
+//! Z-buffer rasterisation of a mesh seen on screen, for the 3D pictures (`shaded_view` shades
+//! and colours what this finds, band by band).
 //!
 //! Pixel `(x, y)` (x right, y down) is sampled at its centre `(x + 0.5, y + 0.5)`; a triangle
 //! covers it when its three barycentric weights are at least `-1e-9` (a hair of tolerance, so a
@@ -78,14 +78,9 @@ pub fn rasterise_screen(
     width: usize,
 ) -> Result<ScreenFragments> {
     let faces = checked_indices(faces, screen.len(), "screen point")?;
-    Ok(rasterise_faces(screen, &faces, height, width))
-}
-
-/// [`rasterise_screen`] of faces whose corners are known to index `screen`.
-fn rasterise_faces(screen: &[[f64; 3]], faces: &[[u32; 3]], height: usize, width: usize) -> ScreenFragments {
-    let bands = rasterise_in_bands(screen, faces, height, width, BAND_ROWS, |_, band| (band.face, band.weights));
-    let (face, weights) = bands.into_iter().unzip::<_, _, Vec<_>, Vec<_>>();
-    ScreenFragments { face: face.concat(), weights: weights.concat() }
+    let bands = rasterise_in_bands(screen, &faces, height, width, BAND_ROWS, |_, band| (band.face, band.weights));
+    let (face, weights): (Vec<_>, Vec<_>) = bands.into_iter().unzip();
+    Ok(ScreenFragments { face: face.concat(), weights: weights.concat() })
 }
 
 /// The fragments of one band of rows, row-major (see [`ScreenFragments`]).

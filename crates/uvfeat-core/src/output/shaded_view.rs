@@ -1,5 +1,5 @@
 //! A picture of per-vertex values on the mesh itself, for the 3D pictures (`uvfeat.render`): the
-//! faces the viewer can see, rasterised by [`rasterise_screen`], coloured per pixel by the
+//! faces the viewer can see, rasterised band by band (`screen.rs`), coloured per pixel by the
 //! barycentric value through a colour table, shaded by a headlight on the interpolated vertex
 //! normal, and averaged down from supersampled pixels.
 //!
@@ -8,7 +8,7 @@
 
 use super::screen::{rasterise_in_bands, BAND_ROWS};
 use crate::error::{Result, UvfeatError};
-use crate::mesh::checked_indices;
+use crate::mesh::{checked_indices, vertex_normals};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -100,7 +100,8 @@ pub fn shaded_view(
     let screen: Vec<[f64; 3]> =
         view.par_iter().map(|p| [(p[0] - frame.left) * frame.scale, (frame.top - p[1]) * frame.scale, p[2]]).collect();
     let drawn: Vec<[u32; 3]> = corners.into_par_iter().filter(|t| faces_viewer(&screen, t, front)).collect();
-    let normals = vertex_normals(view, &drawn);
+    let points: Vec<DVec3> = view.iter().map(|p| DVec3::from_array(*p)).collect();
+    let normals = vertex_normals(&points, &drawn);
     // Bands of whole blocks of supersampled rows, each shaded and averaged down as it is drawn.
     let s = frame.supersampling;
     let band_rows = s * BAND_ROWS.div_ceil(s);
@@ -130,18 +131,6 @@ fn faces_viewer(screen: &[[f64; 3]], t: &[u32; 3], front: Front) -> bool {
         Front::CounterClockwise => area <= 0.0,
         Front::Clockwise => area >= 0.0,
     }
-}
-
-/// Unit area-weighted vertex normals of `faces` (zero where a vertex has no area around it).
-fn vertex_normals(view: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<DVec3> {
-    let mut normals = vec![DVec3::ZERO; view.len()];
-    for t in faces {
-        let [a, b, c] = t.map(|v| DVec3::from_array(view[v as usize]));
-        let normal = (b - a).cross(c - a);
-        t.iter().for_each(|&v| normals[v as usize] += normal);
-    }
-    normals.par_iter_mut().for_each(|n| *n = n.normalize_or_zero());
-    normals
 }
 
 /// The barycentric value over the corners whose value is known, so one unknown vertex does not
