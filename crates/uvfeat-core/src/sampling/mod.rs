@@ -11,6 +11,7 @@ mod fast_path;
 mod gather;
 mod geodesic;
 mod lattice;
+mod lattice_builder;
 mod located;
 mod pattern;
 mod per_chart;
@@ -27,6 +28,7 @@ pub use fast_path::applies as fast_path_applies;
 pub use gather::gather;
 pub use geodesic::{arc_distance, Geodesic, CHORD_SEGMENTS};
 pub use lattice::{LatticeDomain, LatticeTexel, LostPoint, TileLattice, TilePlane};
+pub use lattice_builder::LatticeBuilder;
 pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,
 };

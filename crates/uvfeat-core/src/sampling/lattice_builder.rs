@@ -1,0 +1,315 @@
+//! Placing and locating the points of a tile's lattice (`sampling/lattice.rs`), in passes: a pass
+//! locates the cells a filter keeps that no earlier pass located, so that a caller can look at
+//! part of the lattice (the centre's ring, in `tile_evaluation.rs`) before it pays for the rest.
+
+use super::lattice::{LatticeDomain, LatticeTexel, LostPoint, TileLattice, TilePlane};
+use super::located::locate_target;
+use super::pattern::pcg_hash;
+use super::reach::{Reach, DIRECTIONS};
+use super::settings::SamplerSettings;
+use crate::atlas::Atlas;
+use crate::relocation::{interior_face, locate_with, Home, Located, Relocation};
+use glam::{DMat2, IVec2, Vec2, Vec3};
+
+/// How a located lattice point was reached from the centre: the face it lies in and the seams'
+/// linear maps on the way, which its neighbours farther out continue.
+#[derive(Debug, Clone, Copy)]
+struct Route {
+    home: Home,
+    m_path: DMat2,
+    jumps: u32,
+}
+
+/// What became of a cell of the lattice's box.
+#[derive(Debug, Clone, Copy)]
+enum Cell {
+    /// No pass has located it.
+    Waiting,
+    /// Located, with the route its neighbours farther out continue (`None`: lost, or evaluated
+    /// where no route leads on).
+    Located(Option<Route>),
+    /// Even a walk from the centre could not reach it (out of seam jumps: round a pole's fan of
+    /// seams); a walk to a cell beyond it would only go farther, so none is tried.
+    GivenUp,
+}
+
+/// Where the lattice's points lie in their cells: the same offset for every tile, drawn from the
+/// seed (a Cranley–Patterson shift of the whole lattice), so that runs with other seeds measure
+/// the quadrature's own error.
+fn lattice_offset(seed: u64) -> Vec2 {
+    let h = pcg_hash(seed as u32 ^ pcg_hash((seed >> 32) as u32 ^ 0x5eed));
+    Vec2::new((h & 0xffff) as f32, (h >> 16) as f32) / 65_536.0
+}
+
+/// Texels' worth of cells a lattice may hold beyond one pattern per texel (see [`LatticeBuilder::new`]).
+const SMALL_GROUP: usize = 8;
+
+/// A tile's lattice while its points are located.
+pub struct LatticeBuilder<'a> {
+    atlas: &'a Atlas,
+    plane: &'a TilePlane,
+    settings: &'a SamplerSettings,
+    lattice: TileLattice,
+    /// The box of the texels' places (both zero for a grown domain, which lies around the centre).
+    low: Vec2,
+    high: Vec2,
+    reach: Reach,
+    /// Narrowest and widest margin of the reach, and the farthest texel's distance from the centre.
+    narrowest: f32,
+    widest: f32,
+    widening: f32,
+    /// The place of cell (0, 0) less the offset, in cells, and the offset.
+    first: Vec2,
+    offset: Vec2,
+    columns: i32,
+    rows: i32,
+    /// The parametric area of a cell.
+    cell_uv_area: f64,
+    cells: Vec<Cell>,
+}
+
+impl<'a> LatticeBuilder<'a> {
+    /// The empty lattice covering `domain` for texels at `places` in the plane of its centre, with
+    /// `samples` points per domain; `None` where it would hold more cells than `samples` per texel
+    /// and a few more.
+    pub fn new(
+        atlas: &'a Atlas,
+        plane: &'a TilePlane,
+        places: &[Vec2],
+        domain: LatticeDomain,
+        samples: usize,
+        seed: u64,
+        settings: &'a SamplerSettings,
+    ) -> Option<Self> {
+        let (mut low, mut high) =
+            places.iter().fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(l, h), &w| (l.min(w), h.max(w)));
+        let (reach, widening) = match domain {
+            LatticeDomain::Disks(margin) => (Reach::uniform(margin), 0.0),
+            LatticeDomain::Grown(reach) => {
+                (low, high) = (Vec2::ZERO, Vec2::ZERO);
+                (reach, places.iter().map(|w| w.length()).fold(0.0, f32::max))
+            }
+        };
+        let margins = (0..DIRECTIONS).map(|k| reach.margin(k) as f32);
+        let (narrowest, widest) = (margins.clone().fold(f32::MAX, f32::min), margins.fold(0.0, f32::max));
+        let margin = widest + widening;
+        // `samples` points per domain, as the per-texel pattern spreads its points over a grown one.
+        let domain_area =
+            std::f64::consts::PI * (0..DIRECTIONS).map(|k| reach.margin(k).powi(2)).sum::<f64>() / DIRECTIONS as f64;
+        let spacing = (domain_area / samples as f64).sqrt() as f32;
+        let first = ((low - margin) / spacing).floor();
+        let cells = ((high + margin) / spacing).ceil() - first;
+        // Where the texels lie far apart against their balls (a radius below the texel spacing),
+        // one lattice over them would locate far more points than the texels' own patterns. A
+        // few texels (a chart's corner in a tile) still share one: their patterns' domains are
+        // as large at large radii, and each texel alone gathers twice and probes.
+        if !(f64::from(cells.x) * f64::from(cells.y) <= (samples * (places.len() + SMALL_GROUP)) as f64) {
+            return None;
+        }
+        let axis = usize::from(high.y - low.y > high.x - low.x);
+        // About the disk's share of the box of cells is kept (the points' columns are pushed to).
+        let expected = (f64::from(cells.x) * f64::from(cells.y) * 0.8) as usize + TileLattice::PADDING;
+        let column = || Vec::with_capacity(expected);
+        let lattice = TileLattice {
+            w: [column(), column()],
+            q: [column(), column(), column()],
+            normal: if settings.with_normals { [column(), column(), column()] } else { Default::default() },
+            area: column(),
+            axis,
+            lost: Vec::new(),
+            domain,
+            margin,
+            spacing,
+        };
+        let (columns, rows) = (cells.x as i32, cells.y as i32);
+        Some(Self {
+            atlas,
+            plane,
+            settings,
+            lattice,
+            low,
+            high,
+            reach,
+            narrowest,
+            widest,
+            widening,
+            first,
+            offset: lattice_offset(seed),
+            columns,
+            rows,
+            cell_uv_area: f64::from(spacing * spacing) * plane.ellipse.determinant().abs(),
+            cells: vec![Cell::Waiting; (columns * rows) as usize],
+        })
+    }
+
+    fn index(&self, cell: IVec2) -> usize {
+        (cell.y * self.columns + cell.x) as usize
+    }
+
+    fn place(&self, cell: IVec2) -> Vec2 {
+        (self.first + cell.as_vec2() + self.offset) * self.lattice.spacing
+    }
+
+    /// `true` for points some texel's domain holds: within the margin of the places' box, or
+    /// within the grown domain of the centre.
+    fn held(&self, w: Vec2) -> bool {
+        let out = w - w.clamp(self.low, self.high);
+        let distance = out.length();
+        distance < self.narrowest + self.widening
+            || (distance < self.widest + self.widening
+                && distance < self.reach.at(f64::from(out.y.atan2(out.x))) as f32 + self.widening)
+    }
+
+    /// Locates the points some domain holds at places `wanted` keeps, that no earlier pass
+    /// located: first those in the centre's chart, row by row (in cache order), then the others
+    /// from the centre outwards (L1 order), so that the neighbour one cell towards the centre has
+    /// been located, where a pass has, and its route can be continued.
+    pub fn locate(&mut self, wanted: impl Fn(Vec2) -> bool) {
+        let mut crossing = Vec::new();
+        let (columns, rows) = (self.columns, self.rows);
+        for cell in (0..rows).flat_map(|b| (0..columns).map(move |a| IVec2::new(a, b))) {
+            let (at, w) = (self.index(cell), self.place(cell));
+            if matches!(self.cells[at], Cell::Waiting) && self.held(w) && wanted(w) {
+                match self.interior(w) {
+                    Some(route) => self.cells[at] = Cell::Located(Some(route)),
+                    None => crossing.push(cell),
+                }
+            }
+        }
+        let origin = (-self.first - self.offset)
+            .round()
+            .as_ivec2()
+            .clamp(IVec2::ZERO, IVec2::new(self.columns - 1, self.rows - 1));
+        crossing.sort_by_key(|cell| (*cell - origin).abs().element_sum());
+        for cell in crossing {
+            let towards_centre = origin - cell;
+            let step = if towards_centre.x.abs() >= towards_centre.y.abs() {
+                IVec2::new(towards_centre.x.signum(), 0)
+            } else {
+                IVec2::new(0, towards_centre.y.signum())
+            };
+            let (w, nearer) = (self.place(cell), self.cells[self.index(cell + step)]);
+            let from = match nearer {
+                Cell::Located(Some(route)) => Some((route, self.place(cell + step))),
+                _ => None,
+            };
+            let given_up = matches!(nearer, Cell::GivenUp);
+            let located = if given_up { Located::Missing } else { self.locate_from(w, from) };
+            let gives_up = given_up || (from.is_none() && located == Located::Missing);
+            let route = self.keep(w, located);
+            let at = self.index(cell);
+            self.cells[at] = if gives_up { Cell::GivenUp } else { Cell::Located(route) };
+        }
+    }
+
+    /// [`TileLattice::rim_directions`] over the points located so far.
+    pub fn rim_directions(&self, texel: &LatticeTexel, radius: f64, rim_fraction: f32) -> [bool; DIRECTIONS] {
+        self.lattice.rim_directions_among(0..self.lattice.area.len(), texel, radius, rim_fraction)
+    }
+
+    /// The lattice of the points located: sorted, and padded.
+    pub fn finish(mut self) -> TileLattice {
+        self.sort();
+        for _ in 0..TileLattice::PADDING {
+            self.push(Vec2::INFINITY, Vec3::ZERO, Vec3::ZERO, 0.0);
+        }
+        self.lattice
+    }
+
+    /// Keeps the lattice point `w` when it lies well inside the centre's chart (the fast path's
+    /// shortcut: one table load, no walk), with its route; `None` when it may lie elsewhere.
+    fn interior(&mut self, w: Vec2) -> Option<Route> {
+        let (uv, chart) = (self.plane.uv(w), self.plane.centre.chart);
+        let face = interior_face(self.atlas, uv, chart)?;
+        self.keep(w, Located::Inside { chart, uv, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) })
+    }
+
+    /// Locates the lattice point `w` off the centre's chart interior: it continues the route of
+    /// `from`, its neighbour one cell towards the centre, by one lattice step (a walk of a face or
+    /// so instead of one from the centre), or walks from the centre when the neighbour has no route.
+    fn locate_from(&self, w: Vec2, from: Option<(Route, Vec2)>) -> Located {
+        let (atlas, plane, settings) = (self.atlas, self.plane, self.settings);
+        match from {
+            Some((route, w_from)) => {
+                // The relocation of a target from the neighbour's point, in the chart its route
+                // reached: the interior shortcut, else the walk.
+                let target = route.home.point + route.m_path * (plane.ellipse * (w - w_from).as_dvec2());
+                let chart = atlas.topology.face_chart[route.home.face as usize];
+                let left = settings.max_jumps.saturating_sub(route.jumps);
+                match locate_with(atlas, Relocation::Walk, route.home.point, Some(&route.home), chart, target, left) {
+                    Located::Inside { chart, uv, m_path, jumps, face } => {
+                        Located::Inside { chart, uv, m_path: m_path * route.m_path, jumps: jumps + route.jumps, face }
+                    }
+                    other => other,
+                }
+            }
+            None => locate_target(atlas, &plane.centre, plane.uv(w), settings),
+        }
+    }
+
+    /// Keeps the surface point of the lattice point `w` located at `located` (or counts it lost)
+    /// and returns its route.
+    fn keep(&mut self, w: Vec2, located: Located) -> Option<Route> {
+        let (atlas, settings) = (self.atlas, self.settings);
+        let patches = &atlas.patches.faces;
+        match located {
+            Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches[face as usize].chart >= 0 => {
+                let patch = &patches[face as usize];
+                let local = uv.as_vec2() - Vec2::from_array(patch.uv0);
+                let area = f64::from(patch.area_element) * self.cell_uv_area * m_path.determinant().abs();
+                let normal = if settings.with_normals { patch.normal_at(local) } else { Vec3::ZERO };
+                self.push(w, patch.position_at(local), normal, area as f32);
+                Some(Route { home: Home { face, point: uv }, m_path, jumps })
+            }
+            Located::Inside { chart, uv, m_path, face, .. } => {
+                match settings.lookup.evaluate(atlas, face, uv, chart) {
+                    Some(point) => {
+                        let area = point.area_element * self.cell_uv_area * m_path.determinant().abs();
+                        let relative = (point.position - atlas.patches.origin).as_vec3();
+                        self.push(w, relative, point.normal.as_vec3(), area as f32);
+                    }
+                    None => self.lattice.lost.push(LostPoint { w, border: false }),
+                }
+                None
+            }
+            Located::Border => {
+                self.lattice.lost.push(LostPoint { w, border: true });
+                None
+            }
+            Located::Missing => {
+                self.lattice.lost.push(LostPoint { w, border: false });
+                None
+            }
+        }
+    }
+
+    fn push(&mut self, w: Vec2, relative: Vec3, normal: Vec3, area: f32) {
+        let lattice = &mut self.lattice;
+        lattice.w[0].push(w.x);
+        lattice.w[1].push(w.y);
+        for (column, value) in lattice.q.iter_mut().zip(relative.to_array()) {
+            column.push(value);
+        }
+        if self.settings.with_normals {
+            for (column, value) in lattice.normal.iter_mut().zip(normal.to_array()) {
+                column.push(value);
+            }
+        }
+        lattice.area.push(area);
+    }
+
+    /// Sorts the points by `w[axis]`, so that a texel's domain is one run of them.
+    fn sort(&mut self) {
+        let lattice = &mut self.lattice;
+        let mut order: Vec<u32> = (0..lattice.area.len() as u32).collect();
+        let key = &lattice.w[lattice.axis];
+        order.sort_unstable_by(|&a, &b| key[a as usize].total_cmp(&key[b as usize]));
+        let permute = |column: &mut Vec<f32>| {
+            if !column.is_empty() {
+                *column = order.iter().map(|&k| column[k as usize]).collect();
+            }
+        };
+        lattice.w.iter_mut().chain(&mut lattice.q).chain(&mut lattice.normal).for_each(permute);
+        permute(&mut lattice.area);
+    }
+}
