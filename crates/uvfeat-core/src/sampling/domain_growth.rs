@@ -94,16 +94,25 @@ fn probe(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, reach: &mut 
 /// The reach of `centre` grown from the sampler's margin where the ball reached the rim of the
 /// domain in the `marked` directions: probes set each direction's margin (up to [`MAX_MARGIN`];
 /// marked directions the probes left alone grow by half).
-pub fn grown_reach(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, marked: &[bool; DIRECTIONS]) -> Reach {
-    let before = Reach::uniform(sampler.margin);
-    let mut reach = before;
+fn grown_reach(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings, marked: &[bool; DIRECTIONS]) -> Reach {
+    grow_marked(probed_reach(atlas, centre, sampler), sampler, marked)
+}
+
+/// The reach of `centre` grown from the sampler's margin by the probes alone.
+pub fn probed_reach(atlas: &Atlas, centre: &Centre, sampler: &SamplerSettings) -> Reach {
+    let mut reach = Reach::uniform(sampler.margin);
     probe(atlas, centre, sampler, &mut reach);
+    reach
+}
+
+/// `probed` (see [`probed_reach`]) with the `marked` directions the probes left alone grown by half.
+pub fn grow_marked(mut probed: Reach, sampler: &SamplerSettings, marked: &[bool; DIRECTIONS]) -> Reach {
     for (k, _) in marked.iter().enumerate().filter(|(_, &m)| m) {
-        if reach.margin(k) == before.margin(k) {
-            reach.set_margin(k, (reach.margin(k) * GROWTH).min(MAX_MARGIN));
+        if probed.margin(k) == sampler.margin {
+            probed.set_margin(k, (sampler.margin * GROWTH).min(MAX_MARGIN));
         }
     }
-    reach
+    probed
 }
 
 /// Gathers the neighbourhood of `centre` into `out` (cleared first) with `pattern` placed by

@@ -19,7 +19,7 @@
 //! (`features/lattice_statistics.rs`).
 
 use super::centre::Centre;
-use super::lattice_builder::LatticeBuilder;
+use super::lattice_builder;
 use super::reach::{Reach, DIRECTIONS};
 use super::sample::unit_ellipse;
 use super::settings::SamplerSettings;
@@ -112,7 +112,7 @@ pub enum LatticeDomain {
 impl TileLattice {
     /// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
     /// centre, with `samples` points per domain; `None` where it would hold more cells than
-    /// `samples` per texel and a few more (see [`LatticeBuilder`], which locates it in passes).
+    /// `samples` per texel and a few more (`sampling/lattice_builder.rs`).
     pub fn build(
         atlas: &Atlas,
         plane: &TilePlane,
@@ -122,9 +122,7 @@ impl TileLattice {
         seed: u64,
         settings: &SamplerSettings,
     ) -> Option<Self> {
-        let mut builder = LatticeBuilder::new(atlas, plane, places, domain, samples, seed, settings)?;
-        builder.locate(|_| true);
-        Some(builder.finish())
+        lattice_builder::build(atlas, plane, places, domain, samples, seed, settings)
     }
 
     /// Inert points after the last one, so that a pass reading [`Self::PADDING`] points at a time
@@ -147,20 +145,9 @@ impl TileLattice {
     /// The directions (see [`Reach`]) in which points of `texel`'s disk domain that lie in the ball
     /// of `radius` reach `rim_fraction` of the margin or more: where its domain must grow.
     pub fn rim_directions(&self, texel: &LatticeTexel, radius: f64, rim_fraction: f32) -> [bool; DIRECTIONS] {
-        self.rim_directions_among(self.run(texel.place), texel, radius, rim_fraction)
-    }
-
-    /// [`Self::rim_directions`] over the points `points`.
-    pub(super) fn rim_directions_among(
-        &self,
-        points: std::ops::Range<usize>,
-        texel: &LatticeTexel,
-        radius: f64,
-        rim_fraction: f32,
-    ) -> [bool; DIRECTIONS] {
         let mut marked = [false; DIRECTIONS];
         let (outer, rim) = ((radius * radius) as f32, (rim_fraction * self.margin).powi(2));
-        for k in points {
+        for k in self.run(texel.place) {
             let dw = Vec2::new(self.w[0][k], self.w[1][k]) - texel.place;
             let q = Vec3::new(self.q[0][k], self.q[1][k], self.q[2][k]);
             let dw2 = dw.length_squared();

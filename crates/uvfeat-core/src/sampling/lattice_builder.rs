@@ -1,8 +1,9 @@
-//! Placing and locating the points of a tile's lattice (`sampling/lattice.rs`), in passes: a pass
-//! locates the cells a filter keeps that no earlier pass located, so that a caller can look at
-//! part of the lattice (the centre's ring, in `tile_evaluation.rs`) before it pays for the rest.
+//! Placing and locating the points of a tile's lattice (`sampling/lattice.rs`): the cells some
+//! texel's domain holds, first those well inside the centre's chart (one table load each), then
+//! the others from the centre outwards, each continuing the route of its neighbour one cell nearer
+//! the centre.
 
-use super::lattice::{LatticeDomain, LatticeTexel, LostPoint, TileLattice, TilePlane};
+use super::lattice::{LatticeDomain, LostPoint, TileLattice, TilePlane};
 use super::located::locate_target;
 use super::pattern::pcg_hash;
 use super::reach::{Reach, DIRECTIONS};
@@ -23,7 +24,7 @@ struct Route {
 /// What became of a cell of the lattice's box.
 #[derive(Debug, Clone, Copy)]
 enum Cell {
-    /// No pass has located it.
+    /// Not located (yet, or never: no domain holds it).
     Waiting,
     /// Located, with the route its neighbours farther out continue (`None`: lost, or evaluated
     /// where no route leads on).
@@ -44,8 +45,32 @@ fn lattice_offset(seed: u64) -> Vec2 {
 /// Texels' worth of cells a lattice may hold beyond one pattern per texel (see [`LatticeBuilder::new`]).
 const SMALL_GROUP: usize = 8;
 
+/// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
+/// centre, with `samples` points per domain; `None` where it would hold more cells than `samples`
+/// per texel and a few more.
+pub(super) fn build(
+    atlas: &Atlas,
+    plane: &TilePlane,
+    places: &[Vec2],
+    domain: LatticeDomain,
+    samples: usize,
+    seed: u64,
+    settings: &SamplerSettings,
+) -> Option<TileLattice> {
+    let mut builder = LatticeBuilder::new(atlas, plane, places, domain, samples, seed, settings)?;
+    builder.locate();
+    Some(builder.finish())
+}
+
+/// Distance in cells (maximum norm) from the centre's cell from which a cell whose walk from the
+/// centre failed gives up the cells beyond it without a walk. At a pole of a patchwork sphere at
+/// r = 0.8, the walk to the point in the centre's own cell went round the pole's fan of slits
+/// until it ran out of seam jumps, and the whole lattice was given up: six texels had no samples,
+/// where the exact path's own walks reached 110 points each.
+const HANDS_DOWN_FAILURE: i32 = 3;
+
 /// A tile's lattice while its points are located.
-pub struct LatticeBuilder<'a> {
+struct LatticeBuilder<'a> {
     atlas: &'a Atlas,
     plane: &'a TilePlane,
     settings: &'a SamplerSettings,
@@ -69,10 +94,8 @@ pub struct LatticeBuilder<'a> {
 }
 
 impl<'a> LatticeBuilder<'a> {
-    /// The empty lattice covering `domain` for texels at `places` in the plane of its centre, with
-    /// `samples` points per domain; `None` where it would hold more cells than `samples` per texel
-    /// and a few more.
-    pub fn new(
+    /// The empty lattice (see [`build`]).
+    fn new(
         atlas: &'a Atlas,
         plane: &'a TilePlane,
         places: &[Vec2],
@@ -160,16 +183,15 @@ impl<'a> LatticeBuilder<'a> {
                 && distance < self.reach.at(f64::from(out.y.atan2(out.x))) as f32 + self.widening)
     }
 
-    /// Locates the points some domain holds at places `wanted` keeps, that no earlier pass
-    /// located: first those in the centre's chart, row by row (in cache order), then the others
-    /// from the centre outwards (L1 order), so that the neighbour one cell towards the centre has
-    /// been located, where a pass has, and its route can be continued.
-    pub fn locate(&mut self, wanted: impl Fn(Vec2) -> bool) {
+    /// Locates the points some domain holds: first those in the centre's chart, row by row (in
+    /// cache order), then the others from the centre outwards (L1 order), so that the neighbour
+    /// one cell towards the centre has been located and its route can be continued.
+    fn locate(&mut self) {
         let mut crossing = Vec::new();
         let (columns, rows) = (self.columns, self.rows);
         for cell in (0..rows).flat_map(|b| (0..columns).map(move |a| IVec2::new(a, b))) {
             let (at, w) = (self.index(cell), self.place(cell));
-            if matches!(self.cells[at], Cell::Waiting) && self.held(w) && wanted(w) {
+            if self.held(w) {
                 match self.interior(w) {
                     Some(route) => self.cells[at] = Cell::Located(Some(route)),
                     None => crossing.push(cell),
@@ -193,7 +215,11 @@ impl<'a> LatticeBuilder<'a> {
                 Cell::Located(Some(route)) => Some((route, self.place(cell + step))),
                 _ => None,
             };
-            let given_up = matches!(nearer, Cell::GivenUp);
+            // The staircase of cells funnels a wide angle through a cell near the centre's (the
+            // centre's own cell, every other): a walk that failed there says nothing of the
+            // cells beyond it.
+            let near_centre = (cell + step - origin).abs().max_element() < HANDS_DOWN_FAILURE;
+            let given_up = matches!(nearer, Cell::GivenUp) && !near_centre;
             let located = if given_up { Located::Missing } else { self.locate_from(w, from) };
             let gives_up = given_up || (from.is_none() && located == Located::Missing);
             let route = self.keep(w, located);
@@ -202,13 +228,8 @@ impl<'a> LatticeBuilder<'a> {
         }
     }
 
-    /// [`TileLattice::rim_directions`] over the points located so far.
-    pub fn rim_directions(&self, texel: &LatticeTexel, radius: f64, rim_fraction: f32) -> [bool; DIRECTIONS] {
-        self.lattice.rim_directions_among(0..self.lattice.area.len(), texel, radius, rim_fraction)
-    }
-
     /// The lattice of the points located: sorted, and padded.
-    pub fn finish(mut self) -> TileLattice {
+    fn finish(mut self) -> TileLattice {
         self.sort();
         for _ in 0..TileLattice::PADDING {
             self.push(Vec2::INFINITY, Vec3::ZERO, Vec3::ZERO, 0.0);

@@ -23,12 +23,11 @@ mod sheets;
 mod surfels;
 
 pub use centre::{centre_at, Centre};
-pub use domain_growth::{gather_covering, grown_reach, EDGE_RADIUS, MAX_MARGIN};
+pub use domain_growth::{gather_covering, grow_marked, probed_reach, EDGE_RADIUS, MAX_MARGIN};
 pub use fast_path::applies as fast_path_applies;
 pub use gather::gather;
 pub use geodesic::{arc_distance, Geodesic, CHORD_SEGMENTS};
 pub use lattice::{LatticeDomain, LatticeTexel, LostPoint, TileLattice, TilePlane};
-pub use lattice_builder::LatticeBuilder;
 pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,
 };

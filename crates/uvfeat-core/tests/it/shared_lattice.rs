@@ -5,13 +5,11 @@
 //! exact path's own noise.
 
 use crate::support::{atlas, errors, median, patchwork_sphere, unit_sphere, Truth};
-use glam::{DVec2, DVec3, Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec2};
 use uvfeat_core::features::Feature;
 use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::FeatureMaps;
-use uvfeat_core::sampling::{
-    centre_at, LatticeBuilder, LatticeDomain, LatticeTexel, SamplingPath, TileLattice, TilePlane, EDGE_RADIUS,
-};
+use uvfeat_core::sampling::{centre_at, LatticeDomain, SamplingPath, TileLattice, TilePlane};
 use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::shapes::{ellipsoid, torus, uv_sphere};
 use uvfeat_core::Atlas;
@@ -50,7 +48,8 @@ fn assert_as_accurate(name: &str, atlas: &Atlas, radius: f64, truth: Truth) -> [
     let (shared, exact) = (maps(atlas, radius, SamplingPath::Shared), maps(atlas, radius, SamplingPath::Exact));
     assert_eq!(shared.chart, exact.chart);
     let texels: Vec<usize> = (0..shared.chart.len()).filter(|&t| exact.n_valid[t] > 0).collect();
-    assert!(texels.iter().all(|&t| shared.n_valid[t] > 0), "{name}: a texel without samples");
+    let empty = texels.iter().filter(|&&t| shared.n_valid[t] == 0).count();
+    assert!(empty == 0, "{name}: {empty} texels without samples");
     // Both paths draw N points per disk of the margin, the lattice in the metric of its tile's
     // centre: about the same number lands in the balls (3 % fewer near the poles of a lat-long
     // sphere). Where the coverage check grows a domain, the pattern spreads its N points over it
@@ -89,13 +88,18 @@ fn the_shared_lattice_is_as_accurate_as_the_exact_path_across_many_charts() {
     assert!(atlas.topology.n_charts >= 36, "{} charts", atlas.topology.n_charts);
     let [h, k] = assert_as_accurate("patchwork sphere", &atlas, 0.3, unit_sphere);
     assert!(h < 5e-3 && k < 2e-2, "patchwork sphere: median |H - 1| {h}, |K - 1| {k}");
+    // Balls past their disks at their groups' centres (the groups after them probe first), and
+    // texels at the poles, where half the walks from the centre go round the fan of slits until
+    // they run out of seam jumps.
+    let [h, k] = assert_as_accurate("patchwork sphere, large balls", &atlas, 0.8, unit_sphere);
+    assert!(h < 1e-3 && k < 1e-3, "patchwork sphere at r = 0.8: median |H - 1| {h}, |K - 1| {k}");
 }
 
 #[test]
 fn the_shared_lattice_gives_the_same_maps_on_any_number_of_threads() {
     let atlas = atlas(&torus(2.0, 0.5, 96, 48), 512);
-    // At r = 1 the balls wrap round the tube: groups follow one whose centre reached its rim
-    // ring first (`tile_evaluation.rs`), in the order of their tile, whichever thread runs it.
+    // At r = 1 the balls wrap round the tube: a group after one whose centre's ball reached past
+    // its disk probes first (`tile_evaluation.rs`), in its tile's order, whichever thread runs it.
     for radius in [0.25, 1.0] {
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
@@ -167,57 +171,6 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
     let area: f64 = lattice.area.iter().map(|&a| f64::from(a)).sum();
     let cell = f64::from(lattice.spacing).powi(2) * (0.05f64).powi(2);
     assert!((area / (lattice.len() as f64 * cell) - 1.0).abs() < 1e-3, "{area} for {} cells", lattice.len());
-}
-
-#[test]
-fn a_lattice_located_ring_first_holds_the_points_of_one_pass_and_the_centre_s_rim_directions() {
-    // A centre near a pole of a 4 x 4 patchwork of the lat-long sphere: at r = 0.5 its disk spans
-    // several charts, and the metric's change towards the pole takes the ball past its disk.
-    let atlas = atlas(&patchwork_sphere(4), 256);
-    let centre = centre_at(&atlas, DVec2::new(0.3, 0.05), Lookup::Triangle).expect("a centre");
-    let sampler = settings(0.5, SamplingPath::Shared).sampler();
-    let plane = TilePlane::new(centre, &sampler);
-    let places: Vec<Vec2> = [DVec2::ZERO, DVec2::new(0.01, -0.005)].map(|uv| plane.place(centre.uv + uv)).to_vec();
-    let domain = LatticeDomain::Disks(sampler.margin);
-    let builder = || LatticeBuilder::new(&atlas, &plane, &places, domain, 256, 0, &sampler).expect("a lattice");
-    let at_centre = LatticeTexel {
-        place: Vec2::ZERO,
-        position: (centre.position - atlas.patches.origin).as_vec3(),
-        normal: centre.normal.as_vec3(),
-    };
-    let one_pass = TileLattice::build(&atlas, &plane, &places, domain, 256, 0, &sampler).expect("a lattice");
-    let mut passes = builder();
-    let ring = (EDGE_RADIUS as f32 * sampler.margin as f32).powi(2);
-    passes.locate(|w| w.length_squared() >= ring);
-    let directions = passes.rim_directions(&at_centre, sampler.radius, EDGE_RADIUS as f32);
-    assert!(directions.contains(&true), "the ball reaches the ring");
-    assert_eq!(directions, one_pass.rim_directions(&at_centre, sampler.radius, EDGE_RADIUS as f32));
-    passes.locate(|_| true);
-    let two_passes = passes.finish();
-    // The ring's cells off the centre's chart were walked to from the centre (as the exact path
-    // walks), not continued from their neighbours along a staircase of cells, which unfolds the
-    // curved surface along another path: they, and the cells continued from them, moved.
-    let points = |lattice: &TileLattice| {
-        let mut points: Vec<([f32; 2], [f32; 3])> = (0..lattice.len())
-            .map(|k| ([lattice.w[0][k], lattice.w[1][k]], [lattice.q[0][k], lattice.q[1][k], lattice.q[2][k]]))
-            .collect();
-        points.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap());
-        points
-    };
-    let (a, b) = (points(&one_pass), points(&two_passes));
-    assert_eq!(a.len(), b.len());
-    assert_eq!(one_pass.lost.len(), two_passes.lost.len());
-    let moved: Vec<f32> = a
-        .iter()
-        .zip(&b)
-        .map(|(x, y)| {
-            assert_eq!(x.0, y.0);
-            Vec3::from_array(x.1).distance(Vec3::from_array(y.1))
-        })
-        .filter(|&d| d > 0.0)
-        .collect();
-    assert!(moved.len() < a.len() / 5, "{} of {} points moved", moved.len(), a.len());
-    assert!(moved.iter().all(|&d| d < 0.5 * sampler.radius as f32), "{moved:?}");
 }
 
 #[test]
