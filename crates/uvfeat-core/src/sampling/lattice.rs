@@ -49,8 +49,10 @@ pub struct TileLattice {
     pub area: Vec<f32>,
     /// The column of `w` the points are sorted by.
     pub axis: usize,
-    /// Points that reached no surface.
+    /// Points that reached no surface, sorted by `w[axis]`.
     pub lost: Vec<LostPoint>,
+    /// How many of them met a mesh border.
+    pub lost_at_border: u32,
     /// The domains it covers.
     pub domain: LatticeDomain,
     /// The radius of a texel's disk, or of the grown domain around the centre.
@@ -158,6 +160,21 @@ impl TileLattice {
             }
         }
         marked
+    }
+
+    /// The lost points of the domain of the texel at `place`: at a mesh border, and missing (all
+    /// those of a grown domain, which every texel shares).
+    pub fn lost_in_domain(&self, place: Vec2) -> (u32, u32) {
+        if let LatticeDomain::Grown(_) = self.domain {
+            return (self.lost_at_border, self.lost.len() as u32 - self.lost_at_border);
+        }
+        let at = place[self.axis];
+        let start = self.lost.partition_point(|lost| lost.w[self.axis] <= at - self.margin);
+        let in_disk = self.lost[start..]
+            .iter()
+            .take_while(|lost| lost.w[self.axis] < at + self.margin)
+            .filter(|lost| (lost.w - place).length_squared() < self.margin * self.margin);
+        in_disk.fold((0, 0), |(border, missing), lost| if lost.border { (border + 1, missing) } else { (border, missing + 1) })
     }
 
     /// Points located.

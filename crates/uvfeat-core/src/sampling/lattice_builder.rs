@@ -140,6 +140,7 @@ impl<'a> LatticeBuilder<'a> {
             area: column(),
             axis,
             lost: Vec::new(),
+            lost_at_border: 0,
             domain,
             margin,
             spacing,
@@ -319,7 +320,8 @@ impl<'a> LatticeBuilder<'a> {
         lattice.area.push(area);
     }
 
-    /// Sorts the points by `w[axis]`, so that a texel's domain is one run of them.
+    /// Sorts the points, and the lost ones, by `w[axis]`, so that a texel's domain is one run of
+    /// them.
     fn sort(&mut self) {
         let lattice = &mut self.lattice;
         let mut order: Vec<u32> = (0..lattice.area.len() as u32).collect();
@@ -332,5 +334,8 @@ impl<'a> LatticeBuilder<'a> {
         };
         lattice.w.iter_mut().chain(&mut lattice.q).chain(&mut lattice.normal).for_each(permute);
         permute(&mut lattice.area);
+        let axis = lattice.axis;
+        lattice.lost.sort_unstable_by(|a, b| a.w[axis].total_cmp(&b.w[axis]));
+        lattice.lost_at_border = lattice.lost.iter().filter(|lost| lost.border).count() as u32;
     }
 }
