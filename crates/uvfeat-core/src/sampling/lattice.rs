@@ -19,11 +19,9 @@
 //! (`features/lattice_statistics.rs`).
 
 use super::centre::Centre;
-use super::lattice_builder;
 use super::reach::{Reach, DIRECTIONS};
 use super::sample::unit_ellipse;
 use super::settings::SamplerSettings;
-use crate::atlas::Atlas;
 use glam::{DMat2, DVec2, Vec2, Vec3};
 
 /// A lattice point that reached no surface: the path met a mesh border, or no way was found.
@@ -112,21 +110,6 @@ pub enum LatticeDomain {
 }
 
 impl TileLattice {
-    /// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
-    /// centre, with `samples` points per domain; `None` where it would hold more cells than
-    /// `samples` per texel and a few more (`sampling/lattice_builder.rs`).
-    pub fn build(
-        atlas: &Atlas,
-        plane: &TilePlane,
-        places: &[Vec2],
-        domain: LatticeDomain,
-        samples: usize,
-        seed: u64,
-        settings: &SamplerSettings,
-    ) -> Option<Self> {
-        lattice_builder::build(atlas, plane, places, domain, samples, seed, settings)
-    }
-
     /// Inert points after the last one, so that a pass reading [`Self::PADDING`] points at a time
     /// never reads past the columns: far off every domain, at the origin, with no area.
     pub const PADDING: usize = 8;
@@ -174,7 +157,10 @@ impl TileLattice {
             .iter()
             .take_while(|lost| lost.w[self.axis] < at + self.margin)
             .filter(|lost| (lost.w - place).length_squared() < self.margin * self.margin);
-        in_disk.fold((0, 0), |(border, missing), lost| if lost.border { (border + 1, missing) } else { (border, missing + 1) })
+        in_disk.fold(
+            (0, 0),
+            |(border, missing), lost| if lost.border { (border + 1, missing) } else { (border, missing + 1) },
+        )
     }
 
     /// Points located.

@@ -45,21 +45,23 @@ fn lattice_offset(seed: u64) -> Vec2 {
 /// Texels' worth of cells a lattice may hold beyond one pattern per texel (see [`LatticeBuilder::new`]).
 const SMALL_GROUP: usize = 8;
 
-/// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
-/// centre, with `samples` points per domain; `None` where it would hold more cells than `samples`
-/// per texel and a few more.
-pub(super) fn build(
-    atlas: &Atlas,
-    plane: &TilePlane,
-    places: &[Vec2],
-    domain: LatticeDomain,
-    samples: usize,
-    seed: u64,
-    settings: &SamplerSettings,
-) -> Option<TileLattice> {
-    let mut builder = LatticeBuilder::new(atlas, plane, places, domain, samples, seed, settings)?;
-    builder.locate();
-    Some(builder.finish())
+impl TileLattice {
+    /// Places and locates the lattice covering `domain` for texels at `places` in the plane of its
+    /// centre, with `samples` points per domain; `None` where it would hold more cells than
+    /// `samples` per texel and a few more.
+    pub fn build(
+        atlas: &Atlas,
+        plane: &TilePlane,
+        places: &[Vec2],
+        domain: LatticeDomain,
+        samples: usize,
+        seed: u64,
+        settings: &SamplerSettings,
+    ) -> Option<Self> {
+        let mut builder = LatticeBuilder::new(atlas, plane, places, domain, samples, seed, settings)?;
+        builder.locate();
+        Some(builder.finish())
+    }
 }
 
 /// Distance in cells (maximum norm) from the centre's cell from which a cell whose walk from the
@@ -94,7 +96,7 @@ struct LatticeBuilder<'a> {
 }
 
 impl<'a> LatticeBuilder<'a> {
-    /// The empty lattice (see [`build`]).
+    /// The empty lattice (see [`TileLattice::build`]).
     fn new(
         atlas: &'a Atlas,
         plane: &'a TilePlane,
