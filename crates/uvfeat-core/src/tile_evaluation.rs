@@ -167,9 +167,9 @@ fn evaluate_group(
     // The coverage check's probes first where the tile's previous group's ball reached past its
     // disk at the centre (large radii): where they grow the centre's reach, every texel of the
     // group samples the grown domain, and no disk is located (at r = 16 % of the xatlas torus,
-    // half the points located). In every group, the probes' points in the ball sent groups the
-    // lattice keeps on their disks to the grown domain (clean lat-long sphere at 8 %: 1.5x the
-    // H error).
+    // half the points located). Probing first in every group sent groups whose disks hold their
+    // balls to the grown domain wherever a probe's point lay in the ball (clean lat-long sphere
+    // at 8 %: 1.5x the H error).
     if settings.grow_margin && rim_likely {
         probed = Some(probed_reach(atlas, &centre, &sampler));
     }
