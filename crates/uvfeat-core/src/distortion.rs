@@ -8,7 +8,7 @@
 //! neighbourhood; an ellipse or a seam map built from it covers a thin strip instead of the ball
 //! (up to 66 % of a neighbourhood's area was lost that way).
 
-use crate::mesh::{Topology, NO_CORNER};
+use crate::mesh::{unit_face_normal, Topology, NO_CORNER};
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -112,8 +112,7 @@ pub fn seam_corner_metrics<'a>(
     normals: &[glam::DVec3],
 ) -> Cow<'a, [[f64; 3]]> {
     let rough = |face: usize| {
-        let [a, b, c] = topology.faces[face].map(|v| positions[v as usize]);
-        let normal = (b - a).cross(c - a).normalize_or_zero();
+        let normal = unit_face_normal(topology.faces[face].map(|v| positions[v as usize]));
         topology.faces[face].iter().any(|&v| normal.dot(normals[v as usize]) < ROUGH_COSINE)
     };
     let mut between_charts = vec![false; corner_metrics.len()];

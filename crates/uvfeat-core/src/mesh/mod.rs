@@ -19,7 +19,7 @@ pub use corners::NO_CORNER;
 pub(crate) use edges::sorted_half_edges;
 pub use edges::{EdgeCounts, SideKind};
 pub use jacobian::Jacobian;
-pub use normals::vertex_normals;
+pub use normals::{unit_face_normal, vertex_normals};
 pub use sides::BoundarySide;
 pub use topology::{Topology, TopologyDiagnostics};
 pub use transition::{seam_maps, SeamMap};

@@ -21,6 +21,18 @@ pub fn vertex_normals(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<DVec3> {
     sums
 }
 
+/// Unit normal of the triangle `[a, b, c]` by the right-hand rule, zero for a triangle without
+/// area.
+pub fn unit_face_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+    let (e1, e2) = (b - a, c - a);
+    let cross = e1.cross(e2);
+    if cross.length() <= 1e-12 * e1.length() * e2.length() {
+        DVec3::ZERO
+    } else {
+        cross.normalize()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

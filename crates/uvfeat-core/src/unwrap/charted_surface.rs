@@ -91,13 +91,8 @@ mod tests {
     /// The charted positions, with the mean of all face normals as every face's smoothed normal
     /// (a plane's).
     fn charted(positions: &[DVec3], faces: &[[u32; 3]]) -> Option<Vec<DVec3>> {
-        let normals: Vec<DVec3> = faces
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| positions[v as usize]);
-                (b - a).cross(c - a).normalize_or_zero()
-            })
-            .collect();
+        let normals: Vec<DVec3> =
+            faces.iter().map(|t| crate::mesh::unit_face_normal(t.map(|v| positions[v as usize]))).collect();
         let mean = normals.iter().sum::<DVec3>().normalize();
         charted_positions(positions, faces, &normals, &vec![mean; faces.len()])
     }

@@ -13,7 +13,9 @@ mod segment;
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
-use crate::mesh::{checked_indices, checked_positions, has_repeated_corner, sorted_half_edges, weld_positions};
+use crate::mesh::{
+    checked_indices, checked_positions, has_repeated_corner, sorted_half_edges, unit_face_normal, weld_positions,
+};
 use charted_surface::charted_positions;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -74,7 +76,7 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
     }
     let welded_faces: Vec<[u32; 3]> = input_faces.iter().map(|t| t.map(|v| vertex_ids[v as usize])).collect();
     let face_normals = |positions: &[DVec3]| -> Vec<DVec3> {
-        welded_faces.par_iter().map(|t| unit_normal(t.map(|v| positions[v as usize]))).collect()
+        welded_faces.par_iter().map(|t| unit_face_normal(t.map(|v| positions[v as usize]))).collect()
     };
     let neighbours = face_neighbours(&welded_faces);
     let own_normals = face_normals(&welded);
@@ -137,17 +139,6 @@ fn check_options(options: &UnwrapOptions) -> Result<()> {
         });
     }
     Ok(())
-}
-
-/// Unit normal by the right-hand rule, zero for a triangle without area.
-fn unit_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
-    let (e1, e2) = (b - a, c - a);
-    let cross = e1.cross(e2);
-    if cross.length() <= 1e-12 * e1.length() * e2.length() {
-        DVec3::ZERO
-    } else {
-        cross.normalize()
-    }
 }
 
 /// The face across each edge `(k, k + 1)` of every face, [`NO_FACE`] on borders, non-manifold
