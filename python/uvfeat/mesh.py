@@ -26,6 +26,9 @@ def _float_rows(values, width: int, name: str) -> np.ndarray:
     array = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
     if array.ndim != 2 or array.shape[1] != width:
         raise InvalidMeshError(f"{name} must have shape (n, {width}), got {array.shape}")
+    # The flat test first: a per-row one reduced along rows, a few ms per 100K rows.
+    if np.isfinite(array).all():
+        return array
     bad = ~np.isfinite(array).all(axis=1)
     if bad.any():
         index = int(np.flatnonzero(bad)[0])
@@ -171,8 +174,10 @@ class Mesh:
         # A mask, not np.unique: sorting the corners took a copy of the faces (120 MB at 5M faces).
         used = np.zeros(len(self._positions), dtype=bool)
         used[self._faces.reshape(-1)] = True
-        positions = self._positions[used]
-        return float(np.linalg.norm(positions.max(axis=0) - positions.min(axis=0)))
+        # Coordinate by coordinate: NumPy reduces an (n, 3) array along its rows slowly (7 ms of
+        # the 10 here for 100K vertices).
+        columns = np.ascontiguousarray(self._positions[used].T)
+        return float(np.linalg.norm(columns.max(axis=1) - columns.min(axis=1)))
 
     # -- pre-processing -----------------------------------------------------------------------
     @functools.cached_property

@@ -56,12 +56,19 @@ impl Atlas {
     /// would take), and the position errors of [`Frame::new`].
     pub fn new(topology: Arc<Topology>, positions: &[DVec3], options: &AtlasOptions) -> Result<Self> {
         check_resolution(options)?;
-        // The coverage depends on the UVs only: it is rasterised while the frame is evaluated, so
-        // that the one-thread parts of each overlap.
-        let (frame, coverage) =
-            rayon::join(|| Frame::new(&topology, positions), || Coverage::build(&topology, options.resolution));
-        let frame = frame?;
-        let patches = FacePatches::new(&topology, &frame);
+        // The coverage depends on the UVs only: it is rasterised while the frame and its face
+        // patches are evaluated, so that the one-thread parts of each overlap (the patches built
+        // after the join left one core idle for 20-30 ms of a 200K-face mesh's atlas).
+        let (frame, coverage) = rayon::join(
+            || {
+                Frame::new(&topology, positions).map(|frame| {
+                    let patches = FacePatches::new(&topology, &frame);
+                    (frame, patches)
+                })
+            },
+            || Coverage::build(&topology, options.resolution),
+        );
+        let (frame, patches) = frame?;
         Ok(Self {
             topology,
             coverage,
