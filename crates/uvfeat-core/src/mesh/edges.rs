@@ -38,6 +38,19 @@ pub struct EdgeCounts {
     pub non_manifold: usize,
 }
 
+impl std::ops::Add for EdgeCounts {
+    type Output = Self;
+
+    fn add(self, other: Self) -> Self {
+        Self {
+            interior: self.interior + other.interior,
+            seam: self.seam + other.seam,
+            border: self.border + other.border,
+            non_manifold: self.non_manifold + other.non_manifold,
+        }
+    }
+}
+
 /// The result of classifying every edge of the mesh.
 pub(crate) struct EdgeClasses {
     /// The two sides of every UV-continuous (interior) edge; their faces belong to the same chart.
@@ -70,8 +83,10 @@ pub(crate) fn sorted_half_edges(faces: &[[u32; 3]]) -> Vec<(u64, u32)> {
 pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], degenerate: &[bool]) -> EdgeClasses {
     let side = |half_edge: u32| FaceSide { face: half_edge / 3, local: (half_edge % 3) as u8 };
     let half_edges = sorted_half_edges(faces);
-    let mut classes = EdgeClasses { interior_pairs: Vec::new(), boundary: Vec::new(), counts: EdgeCounts::default() };
-    for group in half_edges.chunk_by(|x, y| x.0 == y.0) {
+    let empty = || EdgeClasses { interior_pairs: Vec::new(), boundary: Vec::new(), counts: EdgeCounts::default() };
+    // Edge by edge in parallel, the pieces joined in order (one thread took 15-20 ms of a
+    // 200K-face mesh's pre-processing here).
+    let classify = |mut classes: EdgeClasses, group: &[(u64, u32)]| {
         let live = || group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
         let n_live = live().count();
         let mut sides = live();
@@ -83,7 +98,7 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
                 classes.boundary.extend(sides.map(|only| (only, kind)));
             }
             (2, false) => {
-                let (Some(x), Some(y)) = (sides.next(), sides.next()) else { continue };
+                let (Some(x), Some(y)) = (sides.next(), sides.next()) else { return classes };
                 if uv_continuous(faces, corner_uvs, x, y) {
                     classes.counts.interior += 1;
                     classes.interior_pairs.push((x, y));
@@ -98,8 +113,14 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
                 classes.boundary.extend(sides.map(|s| (s, SideKind::NonManifold)));
             }
         }
-    }
-    classes
+        classes
+    };
+    half_edges.par_chunk_by(|x, y| x.0 == y.0).fold(empty, classify).reduce(empty, |mut first, second| {
+        first.interior_pairs.extend(second.interior_pairs);
+        first.boundary.extend(second.boundary);
+        first.counts = first.counts + second.counts;
+        first
+    })
 }
 
 /// UV of geometric vertex `vertex` in the face `tri` with corner UVs `corners` (the vertex must be
@@ -139,6 +160,31 @@ mod tests {
         let classes = classify_edges(&faces, &uv, &[false, false]);
         assert_eq!(classes.counts, EdgeCounts { interior: 0, seam: 1, border: 4, non_manifold: 0 });
         assert_eq!(classes.boundary.len(), 6);
+    }
+
+    /// Edges classified in parallel come out in the order of one thread: the sides and pairs in
+    /// the order of their edges, on a torus with a seam and a few non-manifold fins.
+    #[test]
+    fn classes_do_not_depend_on_the_thread_count() {
+        let torus = crate::shapes::torus(2.0, 0.5, 96, 48);
+        let mut faces: Vec<[u32; 3]> = torus.faces.iter().map(|t| t.map(|v| v as u32)).collect();
+        let mut corner_uvs: Vec<[DVec2; 3]> =
+            torus.uv_faces.iter().map(|t| t.map(|k| DVec2::from_array(torus.uvs[k as usize]))).collect();
+        for f in (0..faces.len()).step_by(97) {
+            let [a, b, _] = faces[f];
+            faces.push([b, a, (a + 7) % torus.positions.len() as u32]);
+            corner_uvs.push([DVec2::ZERO, DVec2::X, DVec2::Y]);
+        }
+        let degenerate: Vec<bool> = (0..faces.len()).map(|f| f % 211 == 0).collect();
+        let with = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| classify_edges(&faces, &corner_uvs, &degenerate))
+        };
+        let (one, four) = (with(1), with(4));
+        assert!(one.counts.non_manifold > 0 && one.counts.seam > 0 && one.counts.border > 0, "{:?}", one.counts);
+        assert_eq!(one.counts, four.counts);
+        assert_eq!(one.interior_pairs, four.interior_pairs);
+        assert_eq!(one.boundary, four.boundary);
     }
 
     #[test]
