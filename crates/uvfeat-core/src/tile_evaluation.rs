@@ -14,8 +14,9 @@ use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{lattice_statistics, CurvatureMethod, LatticeNeighbourhood, VolumeWeighting};
 use crate::relocation::{walk, walk_across, Home, Located, Seams};
 use crate::sampling::{
-    centre_at, fast_path_applies, grow_marked, probed_reach, secant_distortion, Centre, LatticeDomain, LatticeTexel,
-    Overlaps, Placement, Quadrature, Reach, Sample, SamplingPath, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
+    centre_at, fast_path_applies, grow_marked, probed_reach, secant_distortion, texel_point, Centre, LatticeDomain,
+    LatticeTexel, Overlaps, Placement, Quadrature, Reach, Sample, SamplingPath, TexelPoint, TileLattice, TilePlane,
+    DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
 use glam::{DVec2, Vec2};
@@ -57,23 +58,22 @@ pub fn evaluate_tile(
 ) -> Vec<PixelResult> {
     let w = settings.resolution;
     let sampler = settings.sampler();
-    let centres: Vec<Option<Centre>> =
-        texels.iter().map(|&t| centre_at(atlas, texel_uv(t, w), settings.lookup)).collect();
+    let points: Vec<Option<TexelPoint>> = texels.iter().map(|&t| texel_point(atlas, texel_uv(t, w))).collect();
     let mut results = vec![PixelResult::EMPTY; texels.len()];
     let mut alone = Vec::new();
     // Balls reach past their disks at the centres of all a tile's groups or of few: the previous
     // group tells the next one (in the tile's fixed order, so every thread count gives the same).
     let mut rim_likely = false;
-    let mut charts: Vec<i32> = centres.iter().flatten().map(|c| c.chart).collect();
+    let mut charts: Vec<i32> = points.iter().flatten().map(|p| p.chart).collect();
     charts.sort_unstable();
     charts.dedup();
     for chart in charts {
-        let mut members: Vec<(usize, Centre)> =
-            centres.iter().enumerate().filter_map(|(k, c)| c.filter(|c| c.chart == chart).map(|c| (k, c))).collect();
+        let mut members: Vec<(usize, TexelPoint)> =
+            points.iter().enumerate().filter_map(|(k, p)| p.filter(|p| p.chart == chart).map(|p| (k, p))).collect();
         // The texels the group's centre reaches without a crossing share its lattice; the others
         // (another arm of a non-convex chart) form the next group.
         for _ in 0..MAX_GROUPS {
-            let Some(centre) = group_centre(&members) else { break };
+            let Some(centre) = group_centre(atlas, &members, settings) else { break };
             let (shared, unreached): (Vec<_>, Vec<_>) =
                 members.into_iter().partition(|(_, member)| reaches(atlas, &centre, member, sampler.max_jumps));
             members = unreached;
@@ -108,7 +108,7 @@ struct Group {
 /// the centre unfolds beyond the member's own boundary from the wrong side (the baked seams'
 /// error, `test_bake`, 1.5 -> 3.3 % of the range); at the poles the groups of a tile row of the
 /// 200K sphere at r = 4 % fall from 14-16 per tile to 6-7.
-fn reaches(atlas: &Atlas, centre: &Centre, member: &Centre, max_jumps: u32) -> bool {
+fn reaches(atlas: &Atlas, centre: &Centre, member: &TexelPoint, max_jumps: u32) -> bool {
     let within = |from: &Home, target: DVec2| match walk(atlas, from, target, max_jumps) {
         Located::Inside { jumps: 0, chart, uv, face: Some(face), .. } if chart == centre.chart => {
             Some(Home { face, point: uv })
@@ -141,17 +141,17 @@ fn evaluate_group(
     atlas: &Atlas,
     settings: &ComputeSettings,
     centre: Centre,
-    members: &[(usize, Centre)],
+    members: &[(usize, TexelPoint)],
     rim_likely: bool,
 ) -> Group {
     let sampler = settings.sampler();
     let stats_settings = settings.stats();
     let mut group = Group { results: Vec::with_capacity(members.len()), alone: Vec::new(), centre_rim: false };
     let plane = TilePlane::new(Centre { distortion: plane_metric(atlas, &centre, settings), ..centre }, &sampler);
-    let texel = |member: &Centre| LatticeTexel {
+    let texel = |member: &TexelPoint| LatticeTexel {
         place: plane.place(member.uv),
-        position: (member.position - atlas.patches.origin).as_vec3(),
-        normal: member.normal.as_vec3(),
+        position: member.position,
+        normal: member.normal,
     };
     let texels: Vec<(usize, LatticeTexel)> = members.iter().map(|(k, member)| (*k, texel(member))).collect();
     let build = |texels: &[(usize, LatticeTexel)], domain: LatticeDomain| {
@@ -161,7 +161,11 @@ fn evaluate_group(
     let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
         lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
     };
-    let centre_texel = texel(&centre);
+    let centre_texel = LatticeTexel {
+        place: plane.place(centre.uv),
+        position: (centre.position - atlas.patches.origin).as_vec3(),
+        normal: centre.normal.as_vec3(),
+    };
     let mut marked = [false; DIRECTIONS];
     let (mut shift, mut probed) = (None, None);
     // The coverage check's probes first where the tile's previous group's ball reached past its
@@ -257,11 +261,12 @@ fn plane_metric(atlas: &Atlas, centre: &Centre, settings: &ComputeSettings) -> D
         .unwrap_or(face)
 }
 
-/// The member nearest the members' mean location: the centre of the group's sampling plane
-/// (`None` without members).
-fn group_centre(members: &[(usize, Centre)]) -> Option<Centre> {
-    let mean = members.iter().map(|(_, c)| c.uv).sum::<DVec2>() / members.len().max(1) as f64;
-    members.iter().map(|(_, c)| *c).min_by(|a, b| a.uv.distance_squared(mean).total_cmp(&b.uv.distance_squared(mean)))
+/// The centre at the member nearest the members' mean location: the centre of the group's
+/// sampling plane (`None` without members).
+fn group_centre(atlas: &Atlas, members: &[(usize, TexelPoint)], settings: &ComputeSettings) -> Option<Centre> {
+    let mean = members.iter().map(|(_, p)| p.uv).sum::<DVec2>() / members.len().max(1) as f64;
+    let nearest = members.iter().min_by(|a, b| a.1.uv.distance_squared(mean).total_cmp(&b.1.uv.distance_squared(mean)));
+    centre_at(atlas, nearest?.1.uv, settings.lookup)
 }
 
 #[cfg(test)]
@@ -283,19 +288,19 @@ mod tests {
             Atlas::new(topology, &mesh.positions, &AtlasOptions { resolution: 512, ..Default::default() }).unwrap();
         // Places in units of the grid's cells (the shape's uvs keep a margin round the unit square).
         let margin = shape.uvs[0][0];
-        let centre_of = |lon: f64, lat: f64| {
-            let uv = DVec2::splat(margin) + DVec2::new(lon / n_lon, lat / n_lat) * (1.0 - 2.0 * margin);
-            centre_at(&atlas, uv, Lookup::default()).unwrap()
-        };
+        let uv_of =
+            |lon: f64, lat: f64| DVec2::splat(margin) + DVec2::new(lon / n_lon, lat / n_lat) * (1.0 - 2.0 * margin);
+        let centre_of = |lon: f64, lat: f64| centre_at(&atlas, uv_of(lon, lat), Lookup::default()).unwrap();
+        let member_of = |lon: f64, lat: f64| texel_point(&atlas, uv_of(lon, lat)).unwrap();
         // A point inside fan triangle 20 (corners (20, 0) at the pole, (21, 1), (20, 1)), from the
         // quad row above it three triangles to the side: the straight path enters triangle 21 and
         // crosses the slit between them.
         let centre = centre_of(23.5, 1.5);
-        let in_fan = centre_of(20.3, 0.6);
+        let in_fan = member_of(20.3, 0.6);
         assert!(!matches!(walk(&atlas, &centre.home, in_fan.home.point, 32), Located::Inside { jumps: 0, .. }));
         assert!(reaches(&atlas, &centre, &in_fan, 32));
-        assert!(reaches(&atlas, &centre, &centre_of(23.0, 3.0), 32));
+        assert!(reaches(&atlas, &centre, &member_of(23.0, 3.0), 32));
         // From one fan triangle, every way to another crosses a slit.
-        assert!(!reaches(&atlas, &in_fan, &centre_of(23.3, 0.6), 32));
+        assert!(!reaches(&atlas, &centre_of(20.3, 0.6), &member_of(23.3, 0.6), 32));
     }
 }

@@ -16,7 +16,7 @@
 
 use crate::frame::{FaceMap, Frame};
 use crate::mesh::Topology;
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 
 /// One face's patch: 31 f32 words, aligned to cache lines so that a patch spans two of them.
@@ -69,6 +69,18 @@ impl FacePatch {
     pub fn position_at(&self, d: Vec2) -> Vec3 {
         let c = self.position.map(Vec3::from_array);
         c[0] + c[1] * d.x + c[2] * d.y + c[3] * (d.x * d.x) + c[4] * (d.x * d.y) + c[5] * (d.y * d.y)
+    }
+
+    /// Position (relative to the origin) and unit normal at parametric offset `d`, evaluated in
+    /// f64 from the stored coefficients: as close to the f64 face map's as the f32 result holds
+    /// (the f32 evaluation adds a few units in the last place, which the centres of the shared
+    /// lattice's texels showed in the clean sphere's H error, +6 %).
+    pub fn precise_point(&self, d: DVec2) -> (Vec3, Vec3) {
+        let c = self.position.map(|c| Vec3::from_array(c).as_dvec3());
+        let n = self.normal.map(|c| Vec3::from_array(c).as_dvec3());
+        let position = c[0] + c[1] * d.x + c[2] * d.y + c[3] * (d.x * d.x) + c[4] * (d.x * d.y) + c[5] * (d.y * d.y);
+        let normal = (n[0] + n[1] * d.x + n[2] * d.y).normalize_or_zero();
+        (position.as_vec3(), normal.as_vec3())
     }
 
     /// Unit normal at parametric offset `d`.

@@ -22,7 +22,7 @@ mod settings;
 mod sheets;
 mod surfels;
 
-pub use centre::{centre_at, Centre};
+pub use centre::{centre_at, texel_point, Centre, TexelPoint};
 pub use domain_growth::{gather_covering, grow_marked, probed_reach, EDGE_RADIUS, MAX_MARGIN};
 pub use fast_path::applies as fast_path_applies;
 pub use gather::gather;
