@@ -115,7 +115,7 @@ fn reaches(atlas: &Atlas, centre: &Centre, member: &TexelPoint, max_jumps: u32) 
         }
         _ => None,
     };
-    if member.uv == centre.uv {
+    if member.uv == centre.uv || within_clear_texels(atlas, centre.home.point, member.home.point) {
         return true;
     }
     // Within the chart, the walk ends in the centre's chart or not at all.
@@ -133,6 +133,20 @@ fn reaches(atlas: &Atlas, centre: &Centre, member: &TexelPoint, max_jumps: u32) 
         }
         _ => false,
     }
+}
+
+/// `true` when the straight path from `from` to `to` crosses only texels of one chart that no
+/// chart boundary touches, read from the coverage's chart distance at `from`: the walk would
+/// arrive without a crossing. Most groups lie inside their chart, and the walks cost 4 % of the
+/// features.
+fn within_clear_texels(atlas: &Atlas, from: DVec2, to: DVec2) -> bool {
+    let (Some((i, j)), Some((k, l))) = (atlas.texel_coordinates(from), atlas.texel_coordinates(to)) else {
+        return false;
+    };
+    // The path's texels lie in the box of its ends' texels, within this (Chebyshev) distance of
+    // `from`'s; those closer than the chart distance less one are clear.
+    let apart = i.abs_diff(k).max(j.abs_diff(l));
+    usize::from(atlas.coverage.chart_distance.at(i, j)) > apart + 2
 }
 
 /// Evaluates the texels `members` of one chart around `centre`, which reaches them all;
@@ -277,6 +291,38 @@ mod tests {
     use crate::shapes::uv_sphere;
     use crate::AtlasOptions;
     use std::sync::Arc;
+
+    /// Where the chart distance says the path is clear, the walk arrives without a crossing: on a
+    /// lat-long sphere (a seam, and the poles' fans of slits) and on a plane cut in two charts.
+    #[test]
+    fn clear_texels_are_reached_without_a_crossing() {
+        for shape in [uv_sphere(1.0, 64, 32), crate::shapes::split_plane(24, false)] {
+            let mesh = TriangleMesh::new(&shape.positions, &shape.faces, &shape.uvs, &shape.uv_faces).unwrap();
+            let topology = Arc::new(Topology::build(&mesh, 0.0).unwrap());
+            let atlas =
+                Atlas::new(topology, &mesh.positions, &AtlasOptions { resolution: 256, ..Default::default() }).unwrap();
+            let (mut clear, mut pairs) = (0, 0);
+            for j in (0..256).step_by(5) {
+                for i in (0..256).step_by(5) {
+                    let from = DVec2::new((i as f64 + 0.5) / 256.0, (j as f64 + 0.5) / 256.0);
+                    let Some(centre) = centre_at(&atlas, from, Lookup::default()) else { continue };
+                    for (di, dj) in [(9.3, -4.1), (-13.7, 2.2), (3.1, 15.9), (-6.0, -11.4)] {
+                        let to = from + DVec2::new(di, dj) / 256.0;
+                        pairs += 1;
+                        if within_clear_texels(&atlas, centre.home.point, to) {
+                            clear += 1;
+                            let walked = walk_across(&atlas, &centre.home, to, 32, Seams::WithinChart);
+                            assert!(
+                                matches!(walked, Located::Inside { jumps: 0, chart, .. } if chart == centre.chart),
+                                "{from} -> {to}: {walked:?}"
+                            );
+                        }
+                    }
+                }
+            }
+            assert!(clear > pairs / 3 && clear < pairs, "{clear} of {pairs}");
+        }
+    }
 
     #[test]
     fn a_pole_fan_triangle_is_reached_round_the_slits_from_the_next_row_but_not_from_another_fan_triangle() {
