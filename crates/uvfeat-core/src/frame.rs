@@ -202,7 +202,9 @@ impl Frame {
             face,
             [1.0 - b.x - b.y, b.x, b.y],
         ));
-        let anisotropy = |d: &Distortion| d.sigma1 / d.sigma2.max(1e-300);
+        // A metric without a second stretch (a smoothed metric that could not be formed is zero)
+        // is infinitely anisotropic: it never replaces a usable one.
+        let anisotropy = |d: &Distortion| if d.sigma2 > 0.0 { d.sigma1 / d.sigma2 } else { f64::INFINITY };
         if anisotropy(&own) > SLIVER_ANISOTROPY * anisotropy(&smooth) {
             smooth
         } else {

@@ -144,7 +144,8 @@ fn within_clear_texels(atlas: &Atlas, from: DVec2, to: DVec2) -> bool {
         return false;
     };
     // The path's texels lie in the box of its ends' texels, within this (Chebyshev) distance of
-    // `from`'s; those closer than the chart distance less one are clear.
+    // `from`'s; those closer than the chart distance less one are clear (`Coverage::chart_distance`),
+    // and one texel more is kept for ends that lie on a texel's edge.
     let apart = i.abs_diff(k).max(j.abs_diff(l));
     usize::from(atlas.coverage.chart_distance.at(i, j)) > apart + 2
 }
@@ -175,11 +176,7 @@ fn evaluate_group(
     let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
         lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
     };
-    let centre_texel = LatticeTexel {
-        place: plane.place(centre.uv),
-        position: (centre.position - atlas.patches.origin).as_vec3(),
-        normal: centre.normal.as_vec3(),
-    };
+    let centre_texel = texel(&centre.texel_point(atlas.patches.origin));
     let mut marked = [false; DIRECTIONS];
     let (mut shift, mut probed) = (None, None);
     // The coverage check's probes first where the tile's previous group's ball reached past its

@@ -38,16 +38,13 @@ pub struct EdgeCounts {
     pub non_manifold: usize,
 }
 
-impl std::ops::Add for EdgeCounts {
-    type Output = Self;
-
-    fn add(self, other: Self) -> Self {
-        Self {
-            interior: self.interior + other.interior,
-            seam: self.seam + other.seam,
-            border: self.border + other.border,
-            non_manifold: self.non_manifold + other.non_manifold,
-        }
+impl EdgeCounts {
+    /// Adds `other`'s counts to these.
+    fn merge(&mut self, other: EdgeCounts) {
+        self.interior += other.interior;
+        self.seam += other.seam;
+        self.border += other.border;
+        self.non_manifold += other.non_manifold;
     }
 }
 
@@ -118,7 +115,7 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
     half_edges.par_chunk_by(|x, y| x.0 == y.0).fold(empty, classify).reduce(empty, |mut first, second| {
         first.interior_pairs.extend(second.interior_pairs);
         first.boundary.extend(second.boundary);
-        first.counts = first.counts + second.counts;
+        first.counts.merge(second.counts);
         first
     })
 }

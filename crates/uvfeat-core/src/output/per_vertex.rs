@@ -81,21 +81,24 @@ fn lookup(maps: &FeatureMaps, uv: DVec2, chart: i32, out: &mut [f64]) -> bool {
 struct CornerMeans {
     sums: Vec<f64>,
     counts: Vec<u32>,
-    corner: Vec<f64>,
+    /// Scratch: the current corner's value of each feature.
+    corner_values: Vec<f64>,
 }
 
 impl CornerMeans {
+    /// Empties the means for a vertex with `n_features` features.
     fn reset(&mut self, n_features: usize) {
-        self.sums.clear();
-        self.sums.resize(n_features, 0.0);
+        for column in [&mut self.sums, &mut self.corner_values] {
+            column.clear();
+            column.resize(n_features, 0.0);
+        }
         self.counts.clear();
         self.counts.resize(n_features, 0);
-        self.corner.resize(n_features, f64::NAN);
     }
 
-    /// Adds the values in `self.corner`.
+    /// Adds the values in `self.corner_values`.
     fn add_corner(&mut self) {
-        for ((sum, count), &v) in self.sums.iter_mut().zip(&mut self.counts).zip(&self.corner) {
+        for ((sum, count), &v) in self.sums.iter_mut().zip(&mut self.counts).zip(&self.corner_values) {
             if v.is_finite() {
                 *sum += v;
                 *count += 1;
@@ -103,6 +106,7 @@ impl CornerMeans {
         }
     }
 
+    /// Writes the means to `out`, leaving it as it is where no corner had a finite value.
     fn write(&self, out: &mut [f64]) {
         for ((slot, &sum), &count) in out.iter_mut().zip(&self.sums).zip(&self.counts) {
             if count > 0 {
@@ -120,8 +124,9 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
     prepare(atlas, settings);
     let n_features = maps.features.len();
     let mut geometric = vec![f64::NAN; (offsets.len() - 1) * n_features];
-    // Per thread, not per vertex: the lists of corner values were five allocations per vertex
-    // (the 200K-face ellipsoid's two features: 16-22 -> 8-10 ms).
+    // Scratch per rayon job, not per vertex: the lists of corner values took several allocations
+    // per vertex, three per corner and one per feature (the 200K-face ellipsoid's two features:
+    // 16-22 -> 8-10 ms).
     let per_thread = || (Vec::new(), CornerMeans::default());
     geometric.par_chunks_mut(n_features.max(1)).enumerate().for_each_init(
         per_thread,
@@ -131,7 +136,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             let mut found = false;
             if query == VertexQuery::Texture {
                 for &(uv, chart) in list {
-                    if lookup(maps, uv, chart, &mut means.corner) {
+                    if lookup(maps, uv, chart, &mut means.corner_values) {
                         means.add_corner();
                         found = true;
                     }
@@ -141,7 +146,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
                 let placement = Placement::of_vertex(vertex as u32, settings.seed);
                 for &(uv, _) in list {
                     let result = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
-                    for (slot, f) in means.corner.iter_mut().zip(&maps.features) {
+                    for (slot, f) in means.corner_values.iter_mut().zip(&maps.features) {
                         *slot = f64::from(result.values[f.index()]);
                     }
                     means.add_corner();

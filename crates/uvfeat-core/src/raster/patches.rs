@@ -72,10 +72,9 @@ impl FacePatch {
     }
 
     /// Position (relative to the origin) and unit normal at parametric offset `d`, evaluated in
-    /// f64 from the stored coefficients: as close to the f64 face map's as the f32 result holds
-    /// (the f32 evaluation adds a few units in the last place, which the centres of the shared
-    /// lattice's texels showed in the clean sphere's H error, +6 %).
-    pub fn precise_point(&self, d: DVec2) -> (Vec3, Vec3) {
+    /// f64 from the f32 coefficients, so that the sum adds no rounding of its own (evaluated in
+    /// f32, the shared lattice's texel points raised the clean sphere's H error by 6 %).
+    pub fn point_and_normal_f64(&self, d: DVec2) -> (Vec3, Vec3) {
         let c = self.position.map(|c| Vec3::from_array(c).as_dvec3());
         let n = self.normal.map(|c| Vec3::from_array(c).as_dvec3());
         let position = c[0] + c[1] * d.x + c[2] * d.y + c[3] * (d.x * d.x) + c[4] * (d.x * d.y) + c[5] * (d.y * d.y);

@@ -61,6 +61,20 @@ pub struct TexelPoint {
     pub normal: Vec3,
 }
 
+impl Centre {
+    /// The centre as a texel point, its point and normal rounded to f32 relative to `origin` (the
+    /// patches').
+    pub fn texel_point(&self, origin: DVec3) -> TexelPoint {
+        TexelPoint {
+            uv: self.uv,
+            chart: self.chart,
+            home: self.home,
+            position: (self.position - origin).as_vec3(),
+            normal: self.normal.as_vec3(),
+        }
+    }
+}
+
 /// The texel point at `uv`: `None` exactly where [`centre_at`] with the triangle lookup is `None`.
 pub fn texel_point(atlas: &Atlas, uv: DVec2) -> Option<TexelPoint> {
     let chart = atlas.chart_at(uv);
@@ -69,15 +83,16 @@ pub fn texel_point(atlas: &Atlas, uv: DVec2) -> Option<TexelPoint> {
     if patch.chart < 0 {
         return None;
     }
-    // The sampler's metric is the face's own unless a smoothed one is less anisotropic, so where
-    // the face's passes `centre_at`'s test, so does the sampler's.
+    // The sampler's metric is the face's own unless that is more than `SLIVER_ANISOTROPY` times
+    // as anisotropic as the smoothed one (`Frame::sampling_distortion`), so where the face's
+    // passes `centre_at`'s test, so does the sampler's.
     let passes = |d: &Distortion| d.sigma2 > 1e-12 * d.sigma1;
     if !passes(&atlas.frame.distortion[home.face as usize])
         && !passes(&atlas.frame.sampling_distortion(&atlas.topology, home.face, home.point))
     {
         return None;
     }
-    let (position, normal) = patch.precise_point(home.point - DVec2::from_array(patch.uv0.map(f64::from)));
+    let (position, normal) = patch.point_and_normal_f64(home.point - DVec2::from_array(patch.uv0.map(f64::from)));
     Some(TexelPoint { uv, chart, home, position, normal })
 }
 
