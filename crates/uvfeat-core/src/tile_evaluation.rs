@@ -14,9 +14,9 @@ use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{lattice_statistics, CurvatureMethod, LatticeNeighbourhood, VolumeWeighting};
 use crate::relocation::{walk, walk_across, Home, Located, Seams};
 use crate::sampling::{
-    centre_at, fast_path_applies, grow_marked, probed_reach, secant_distortion, texel_point, Centre, LatticeDomain,
-    LatticeTexel, Overlaps, Placement, Quadrature, Reach, Sample, SamplingPath, TexelPoint, TileLattice, TilePlane,
-    DIRECTIONS, EDGE_RADIUS,
+    fast_path_applies, grow_marked, probed_reach, secant_distortion, texel_point, Centre, LatticeDomain, LatticeTexel,
+    Overlaps, Placement, Quadrature, Reach, Sample, SamplingPath, TexelPoint, TileLattice, TilePlane, DIRECTIONS,
+    EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
 use glam::{DVec2, Vec2};
@@ -277,7 +277,7 @@ fn plane_metric(atlas: &Atlas, centre: &Centre, settings: &ComputeSettings) -> D
 fn group_centre(atlas: &Atlas, members: &[(usize, TexelPoint)], settings: &ComputeSettings) -> Option<Centre> {
     let mean = members.iter().map(|(_, p)| p.uv).sum::<DVec2>() / members.len().max(1) as f64;
     let nearest = members.iter().min_by(|a, b| a.1.uv.distance_squared(mean).total_cmp(&b.1.uv.distance_squared(mean)));
-    centre_at(atlas, nearest?.1.uv, settings.lookup)
+    nearest?.1.centre(atlas, settings.lookup)
 }
 
 #[cfg(test)]
@@ -285,6 +285,7 @@ mod tests {
     use super::*;
     use crate::lookup::Lookup;
     use crate::mesh::{Topology, TriangleMesh};
+    use crate::sampling::centre_at;
     use crate::shapes::uv_sphere;
     use crate::AtlasOptions;
     use std::sync::Arc;

@@ -18,26 +18,33 @@ pub(crate) fn corner_groups(
     faces: &[[u32; 3]],
     corner_uvs: &[[DVec2; 3]],
     excluded: &[bool],
+    n_vertices: usize,
 ) -> (Vec<[u32; 3]>, usize) {
-    let n_vertices = faces.par_iter().flat_map_iter(|t| t.iter().copied()).max().map_or(0, |v| v as usize + 1);
     let charted = faces.iter().enumerate().filter(|&(f, _)| !excluded[f]);
     let corners = charted.flat_map(|(f, tri)| (0..3).map(move |k| (tri[k], (3 * f + k) as u32)));
-    let (_, mut by_vertex) = compressed_rows(n_vertices, corners);
+    let (start, mut by_vertex) = compressed_rows(n_vertices, corners);
+    let row = |v: usize| start[v] as usize..start[v + 1] as usize;
     let uv_bits = |corner: u32| {
         let uv = corner_uvs[corner as usize / 3][corner as usize % 3];
         (uv.x.to_bits(), uv.y.to_bits())
     };
-    let vertex = |corner: u32| faces[corner as usize / 3][corner as usize % 3];
-    by_vertex
-        .par_chunk_by_mut(|&a, &b| vertex(a) == vertex(b))
-        .for_each(|corners| corners.sort_unstable_by_key(|&corner| (uv_bits(corner), corner)));
+    let mut rows = Vec::with_capacity(n_vertices);
+    let mut rest = by_vertex.as_mut_slice();
+    for v in 0..n_vertices {
+        let (own, after) = rest.split_at_mut(row(v).len());
+        rows.push(own);
+        rest = after;
+    }
+    rows.into_par_iter().for_each(|corners| corners.sort_unstable_by_key(|&corner| (uv_bits(corner), corner)));
     let mut groups = vec![[NO_CORNER; 3]; faces.len()];
     let mut n_groups = 0;
-    for group in by_vertex.chunk_by(|&a, &b| vertex(a) == vertex(b) && uv_bits(a) == uv_bits(b)) {
-        for &corner in group {
-            groups[corner as usize / 3][corner as usize % 3] = n_groups as u32;
+    for v in 0..n_vertices {
+        for group in by_vertex[row(v)].chunk_by(|&a, &b| uv_bits(a) == uv_bits(b)) {
+            for &corner in group {
+                groups[corner as usize / 3][corner as usize % 3] = n_groups as u32;
+            }
+            n_groups += 1;
         }
-        n_groups += 1;
     }
     (groups, n_groups)
 }
@@ -62,7 +69,7 @@ mod tests {
             .map(|tri| tri.map(|v| DVec2::new(f64::from(v % 7) / 7.0, f64::from(next(2) + v % 3) / 4.0)))
             .collect();
         let excluded: Vec<bool> = (0..faces.len()).map(|f| f % 37 == 0).collect();
-        let (groups, n) = corner_groups(&faces, &corner_uvs, &excluded);
+        let (groups, n) = corner_groups(&faces, &corner_uvs, &excluded, 60);
         let mut keys: Vec<(u32, u64, u64)> = (0..faces.len())
             .filter(|&f| !excluded[f])
             .flat_map(|f| (0..3).map(move |k| (f, k)))

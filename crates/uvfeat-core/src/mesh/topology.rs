@@ -98,7 +98,7 @@ impl Topology {
                 (classes, face_chart, n_charts, sides, walk_faces)
             },
             || {
-                let (groups, n_corners) = corner_groups(&faces, &corner_uvs, &excluded);
+                let (groups, n_corners) = corner_groups(&faces, &corner_uvs, &excluded, n_geometric);
                 let around = groups
                     .iter()
                     .enumerate()

@@ -27,7 +27,11 @@ pub struct Centre {
 /// The centre at parametric location `uv`; `None` off the charts or on a face degenerate in 3D.
 pub fn centre_at(atlas: &Atlas, uv: DVec2, lookup: Lookup) -> Option<Centre> {
     let chart = atlas.chart_at(uv);
-    let home = home(atlas, uv, chart)?;
+    centre_from_home(atlas, uv, chart, home(atlas, uv, chart)?, lookup)
+}
+
+/// The centre at `uv` of `chart`, whose home face is known.
+fn centre_from_home(atlas: &Atlas, uv: DVec2, chart: i32, home: Home, lookup: Lookup) -> Option<Centre> {
     let point = lookup.evaluate(atlas, Some(home.face), home.point, chart)?;
     let distortion = atlas.frame.sampling_distortion(&atlas.topology, home.face, home.point);
     if !(distortion.sigma2 > 1e-12 * distortion.sigma1) {
@@ -72,6 +76,13 @@ impl Centre {
             position: (self.position - origin).as_vec3(),
             normal: self.normal.as_vec3(),
         }
+    }
+}
+
+impl TexelPoint {
+    /// The full centre at this texel point ([`centre_at`] without locating its home again).
+    pub fn centre(&self, atlas: &Atlas, lookup: Lookup) -> Option<Centre> {
+        centre_from_home(atlas, self.uv, self.chart, self.home, lookup)
     }
 }
 
