@@ -129,21 +129,6 @@ def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True
         yield RadiusMaps(radius, maps, per_vertex, notes, time.perf_counter() - started)
 
 
-def preload_picture_modules() -> None:
-    """Imports matplotlib's figure and Agg canvas in a background thread: the atlas and the
-    features run in Rust without the GIL, so the import (0.3-0.5 s) overlaps them instead of
-    delaying the first picture (``uvfeat compute`` on a cached 200K-face mesh: 2.89-3.55 ->
-    2.51-3.22 s in five rounds in turns). A module imported while the thread imports it waits
-    for it."""
-    import threading
-
-    def load() -> None:
-        from matplotlib.backends import backend_agg  # noqa: F401
-        from matplotlib import figure  # noqa: F401
-
-    threading.Thread(target=load, name="uvfeat-preload-matplotlib", daemon=True).start()
-
-
 def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], started: float,
                         advance=lambda description, done=True: None, source: dict | None = None):
     """Computes the job's features on ``mesh`` and writes its files to ``out``; ``advance``
@@ -156,8 +141,6 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     from .surface_plot import save_plot
 
     os.makedirs(out, exist_ok=True)
-    if job.pictures:
-        preload_picture_modules()
     summary = {"uvfeat": __version__, "mesh": mesh.name, "source": source or {}, "warnings": list(load_notes),
                "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
