@@ -52,7 +52,12 @@ pub enum Relocation {
 #[inline]
 pub fn interior_face(atlas: &Atlas, target: DVec2, chart: i32) -> Option<u32> {
     let (i, j) = atlas.texel_coordinates(target)?;
-    let face = atlas.coverage.interior_face.at(i, j);
+    interior_of_chart(atlas, atlas.coverage.interior_face.at(i, j), chart)
+}
+
+/// `face`, a value of the interior table ([`interior_face`]), when it is a face of `chart`.
+#[inline]
+pub fn interior_of_chart(atlas: &Atlas, face: u32, chart: i32) -> Option<u32> {
     (face != u32::MAX && atlas.topology.face_chart[face as usize] == chart).then_some(face)
 }
 
