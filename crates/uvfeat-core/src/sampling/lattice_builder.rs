@@ -120,6 +120,8 @@ struct LatticeBuilder<'a> {
     cell_uv_area: f64,
     cells: Vec<Cell>,
     routes: Vec<Route>,
+    /// The line of cells across the lattice's axis of each point kept (see [`Self::sort`]).
+    lines: Vec<u32>,
 }
 
 impl<'a> LatticeBuilder<'a> {
@@ -193,6 +195,7 @@ impl<'a> LatticeBuilder<'a> {
             cell_uv_area: f64::from(spacing * spacing) * plane.ellipse.determinant().abs(),
             cells: vec![Cell::Waiting; (columns * rows) as usize],
             routes: Vec::new(),
+            lines: Vec::with_capacity(expected),
         })
     }
 
@@ -252,7 +255,7 @@ impl<'a> LatticeBuilder<'a> {
             let given_up = self.cells[self.index(cell + step)] == Cell::GivenUp && !near_centre;
             let located = if given_up { Located::Missing } else { self.locate_from(w, from) };
             let gives_up = given_up || (from.is_none() && located == Located::Missing);
-            let route = self.keep(w, located);
+            let route = self.keep(cell, located);
             let at = self.index(cell);
             self.cells[at] = match route {
                 _ if gives_up => Cell::GivenUp,
@@ -296,7 +299,7 @@ impl<'a> LatticeBuilder<'a> {
             let at = self.index(cell);
             let located = Located::Inside { chart, uv, m_path: DMat2::IDENTITY, jumps: 0, face: Some(face) };
             // A face without a patch (degenerate) was evaluated by the lookup: no route leads on.
-            self.cells[at] = match self.keep(w, located) {
+            self.cells[at] = match self.keep(cell, located) {
                 Some(_) => Cell::Interior(face),
                 None => Cell::Ended,
             };
@@ -308,7 +311,7 @@ impl<'a> LatticeBuilder<'a> {
     fn finish(mut self) -> TileLattice {
         self.sort();
         for _ in 0..TileLattice::PADDING {
-            self.push(Vec2::INFINITY, Vec3::ZERO, Vec3::ZERO, 0.0);
+            self.push(Vec2::INFINITY, 0, Vec3::ZERO, Vec3::ZERO, 0.0);
         }
         self.lattice
     }
@@ -336,10 +339,11 @@ impl<'a> LatticeBuilder<'a> {
         }
     }
 
-    /// Keeps the surface point of the lattice point `w` located at `located` (or counts it lost)
-    /// and returns its route.
-    fn keep(&mut self, w: Vec2, located: Located) -> Option<Route> {
+    /// Keeps the surface point of the lattice point of `cell` located at `located` (or counts it
+    /// lost) and returns its route.
+    fn keep(&mut self, cell: IVec2, located: Located) -> Option<Route> {
         let (atlas, settings) = (self.atlas, self.settings);
+        let (w, line) = (self.place(cell), cell[self.lattice.axis] as u32);
         let patches = &atlas.patches.faces;
         match located {
             Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches[face as usize].chart >= 0 => {
@@ -347,7 +351,7 @@ impl<'a> LatticeBuilder<'a> {
                 let local = uv.as_vec2() - Vec2::from_array(patch.uv0);
                 let area = f64::from(patch.area_element) * self.cell_uv_area * m_path.determinant().abs();
                 let normal = if settings.with_normals { patch.normal_at(local) } else { Vec3::ZERO };
-                self.push(w, patch.position_at(local), normal, area as f32);
+                self.push(w, line, patch.position_at(local), normal, area as f32);
                 Some(Route { home: Home { face, point: uv }, m_path, jumps })
             }
             Located::Inside { chart, uv, m_path, face, .. } => {
@@ -355,7 +359,7 @@ impl<'a> LatticeBuilder<'a> {
                     Some(point) => {
                         let area = point.area_element * self.cell_uv_area * m_path.determinant().abs();
                         let relative = (point.position - atlas.patches.origin).as_vec3();
-                        self.push(w, relative, point.normal.as_vec3(), area as f32);
+                        self.push(w, line, relative, point.normal.as_vec3(), area as f32);
                     }
                     None => self.lattice.lost.push(LostPoint { w, border: false }),
                 }
@@ -372,7 +376,9 @@ impl<'a> LatticeBuilder<'a> {
         }
     }
 
-    fn push(&mut self, w: Vec2, relative: Vec3, normal: Vec3, area: f32) {
+    /// Adds a point to the lattice's columns; `line` is its cell's index along the lattice's axis.
+    fn push(&mut self, w: Vec2, line: u32, relative: Vec3, normal: Vec3, area: f32) {
+        self.lines.push(line);
         let lattice = &mut self.lattice;
         lattice.w[0].push(w.x);
         lattice.w[1].push(w.y);
@@ -388,12 +394,23 @@ impl<'a> LatticeBuilder<'a> {
     }
 
     /// Sorts the points, and the lost ones, by `w[axis]`, so that a texel's domain is one run of
-    /// them.
+    /// them. The points of one line of cells across the axis share their `w[axis]`, so the points
+    /// are counted into their lines (in the order they were located) instead of compared.
     fn sort(&mut self) {
         let lattice = &mut self.lattice;
-        let mut order: Vec<u32> = (0..lattice.area.len() as u32).collect();
-        let key = &lattice.w[lattice.axis];
-        order.sort_unstable_by(|&a, &b| key[a as usize].total_cmp(&key[b as usize]));
+        let lines = if lattice.axis == 0 { self.columns } else { self.rows };
+        let mut next = vec![0u32; lines as usize + 1];
+        for &line in &self.lines {
+            next[line as usize + 1] += 1;
+        }
+        for k in 1..next.len() {
+            next[k] += next[k - 1];
+        }
+        let mut order = vec![0u32; self.lines.len()];
+        for (k, &line) in self.lines.iter().enumerate() {
+            order[next[line as usize] as usize] = k as u32;
+            next[line as usize] += 1;
+        }
         let permute = |column: &mut Vec<f32>| {
             if !column.is_empty() {
                 *column = order.iter().map(|&k| column[k as usize]).collect();
