@@ -25,6 +25,8 @@ class Method:
     run: Callable[[Surface, float], tuple]
     probe: Callable[[], Optional[str]]
     note: str
+    #: The library's module: its worker imports it before the first timed call.
+    module: str
 
 
 def rings(surface: Surface, radius: float) -> int:
@@ -160,19 +162,20 @@ def trueform_kring(surface: Surface, radius: float) -> tuple:
 
 METHODS = {
     "uvfeat": Method("uvfeat parametric", uvfeat_options(), uvfeat_option_probe(),
-                     "uvfeat.compute, default options (1024² buffers, 512² texture, 256 samples)"),
+                     "uvfeat.compute, default options (1024² buffers, 512² texture, 256 samples)", "uvfeat"),
     "uvfeat-fit": Method("uvfeat fit", uvfeat_options(method="fit"), uvfeat_option_probe(method="fit"),
-                         "uvfeat.compute(method='fit'): weighted least-squares fit of osculating circles with free offset and tilt"),
+                         "uvfeat.compute(method='fit'): weighted least-squares fit of osculating circles with free offset and tilt",
+                         "uvfeat"),
     "uvfeat-reference": Method("uvfeat reference", uvfeat_reference, _reference_probe,
-                               "uvfeat.reference.compute: the mesh-space reference estimator"),
+                               "uvfeat.reference.compute: the mesh-space reference estimator", "uvfeat.reference"),
     "libigl": Method("libigl k-ring", libigl(use_kring=True), _missing("igl"),
-                     "igl.principal_curvature(radius=k, useKring=True), k = round(r / h)"),
+                     "igl.principal_curvature(radius=k, useKring=True), k = round(r / h)", "igl"),
     "libigl-ball": Method("libigl ball", libigl(use_kring=False), _missing("igl"),
-                          "igl.principal_curvature(radius=k, useKring=False): ball of k mean edge lengths"),
+                          "igl.principal_curvature(radius=k, useKring=False): ball of k mean edge lengths", "igl"),
     "trimesh": Method("trimesh ball measures", trimesh_ball, _missing("trimesh"),
-                      "discrete mean / Gaussian curvature measures of B(v, r) / (pi r^2)"),
+                      "discrete mean / Gaussian curvature measures of B(v, r) / (pi r^2)", "trimesh"),
     "pymeshlab": Method("MeshLab SDQF", pymeshlab_sdqf, _missing("pymeshlab"),
-                        "pymeshlab Scale Dependent Quadric Fitting, scale = r (absolute)"),
+                        "pymeshlab Scale Dependent Quadric Fitting, scale = r (absolute)", "pymeshlab"),
     "trueform": Method("trueform k-ring", trueform_kring, _missing("trueform"),
-                       "trueform.principal_curvatures(k), k = round(r / h)"),
+                       "trueform.principal_curvatures(k), k = round(r / h)", "trueform"),
 }
