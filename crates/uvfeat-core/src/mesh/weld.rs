@@ -4,6 +4,7 @@
 //! those splits, or every seam would look like a mesh border.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use rustc_hash::FxHashMap as HashMap;
 
 /// Maps every input vertex to a geometric vertex id.
@@ -17,16 +18,34 @@ pub fn weld_positions(positions: &[DVec3], tolerance: f64) -> (Vec<u32>, usize) 
     if tolerance > 0.0 {
         weld_with_tolerance(positions, tolerance)
     } else {
-        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity_and_hasher(positions.len(), Default::default());
-        let ids = positions
-            .iter()
-            .map(|p| {
-                let next = first.len() as u32;
-                *first.entry(exact_key(*p)).or_insert(next)
-            })
-            .collect();
-        (ids, first.len())
+        weld_exact(positions)
     }
+}
+
+/// [`weld_positions`] on exact equality: the positions sorted by their bits in parallel (a hash
+/// map filled in order took 8-10 ms of a 100K-vertex mesh's pre-processing on one thread), each
+/// run of equal ones sent to its first vertex, and the first vertices numbered in order.
+fn weld_exact(positions: &[DVec3]) -> (Vec<u32>, usize) {
+    let mut keyed: Vec<([u64; 3], u32)> =
+        positions.par_iter().enumerate().map(|(v, p)| (exact_key(*p), v as u32)).collect();
+    keyed.par_sort_unstable();
+    let mut first = vec![0u32; positions.len()];
+    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+        // Sorted by vertex within the run: the run's first is its first appearance.
+        run.iter().for_each(|&(_, v)| first[v as usize] = run[0].1);
+    }
+    let mut ids = vec![0u32; positions.len()];
+    let mut next = 0;
+    for v in 0..positions.len() {
+        // An earlier vertex's id is set by now.
+        ids[v] = if first[v] as usize == v {
+            next += 1;
+            next - 1
+        } else {
+            ids[first[v] as usize]
+        };
+    }
+    (ids, next as usize)
 }
 
 fn exact_key(p: DVec3) -> [u64; 3] {
@@ -97,6 +116,22 @@ mod tests {
         let (ids, n) = weld_positions(&p, 0.0);
         assert_eq!(ids, vec![0, 1, 0, 1]);
         assert_eq!(n, 2);
+    }
+
+    /// Ids in order of first appearance, as a map filled vertex by vertex gives them, over
+    /// thousands of positions repeated in scrambled order.
+    #[test]
+    fn exact_weld_numbers_vertices_in_order_of_first_appearance() {
+        let p: Vec<DVec3> = (0..5000u32).map(|v| DVec3::new(f64::from((v * 7919) % 1237), 0.5, -1.0)).collect();
+        let mut seen = std::collections::HashMap::new();
+        let expected: Vec<u32> = p
+            .iter()
+            .map(|x| {
+                let next = seen.len() as u32;
+                *seen.entry(exact_key(*x)).or_insert(next)
+            })
+            .collect();
+        assert_eq!(weld_positions(&p, 0.0), (expected, 1237));
     }
 
     #[test]
