@@ -95,7 +95,8 @@ pub fn lattice_statistics(
         inverse_ramp_width: 1.0 / (r * RAMP * lattice.spacing),
         shift: curvature_shift as f32,
     };
-    let run = lattice.run(texel.place);
+    // No point beyond the ramp's end weighs anything.
+    let run = lattice.run(texel, thresholds.ramp_end);
     let lanes = if with_normals {
         dispatch::<true>(lattice, texel, &thresholds, run)
     } else {

@@ -45,7 +45,7 @@ pub struct TileLattice {
     pub normal: [Vec<f32>; 3],
     /// Surface area the point stands for.
     pub area: Vec<f32>,
-    /// The column of `w` the points are sorted by.
+    /// The column the points are sorted by: of `w` for disks, of `q` for a grown domain.
     pub axis: usize,
     /// Points that reached no surface, sorted by `w[axis]`.
     pub lost: Vec<LostPoint>,
@@ -114,16 +114,17 @@ impl TileLattice {
     /// never reads past the columns: far off every domain, at the origin, with no area.
     pub const PADDING: usize = 8;
 
-    /// The run of points whose `w[axis]` lies within the margin of `place` (every point of a grown
-    /// domain, which all texels share).
-    pub fn run(&self, place: Vec2) -> std::ops::Range<usize> {
-        if let LatticeDomain::Grown(_) = self.domain {
-            return 0..self.len();
-        }
-        let key = &self.w[self.axis];
-        let at = place[self.axis];
-        let start = key.partition_point(|&x| x <= at - self.margin);
-        let end = key.partition_point(|&x| x < at + self.margin);
+    /// The run of points that may lie in `texel`'s domain: those whose `w[axis]` lies within the
+    /// margin of its place, or, on a grown domain (which every texel shares), whose `q[axis]` lies
+    /// within `ball` of its point (the run then holds every point of the domain within `ball`).
+    pub fn run(&self, texel: &LatticeTexel, ball: f32) -> std::ops::Range<usize> {
+        let (key, at, half_width) = match self.domain {
+            LatticeDomain::Disks(_) => (&self.w[self.axis], texel.place[self.axis], self.margin),
+            // Widened a little so that rounding in `at -/+ ball` never drops a point of the ball.
+            LatticeDomain::Grown(_) => (&self.q[self.axis], texel.position[self.axis], ball * (1.0 + 1e-4) + 1e-6),
+        };
+        let start = key[..self.len()].partition_point(|&x| x <= at - half_width);
+        let end = key[..self.len()].partition_point(|&x| x < at + half_width);
         start..end.max(start)
     }
 
@@ -132,7 +133,7 @@ impl TileLattice {
     pub fn rim_directions(&self, texel: &LatticeTexel, radius: f64, rim_fraction: f32) -> [bool; DIRECTIONS] {
         let mut marked = [false; DIRECTIONS];
         let (outer, rim) = ((radius * radius) as f32, (rim_fraction * self.margin).powi(2));
-        for k in self.run(texel.place) {
+        for k in self.run(texel, 0.0) {
             let dw = Vec2::new(self.w[0][k], self.w[1][k]) - texel.place;
             let q = Vec3::new(self.q[0][k], self.q[1][k], self.q[2][k]);
             let dw2 = dw.length_squared();

@@ -393,12 +393,32 @@ impl<'a> LatticeBuilder<'a> {
         lattice.area.push(area);
     }
 
-    /// Sorts the points, and the lost ones, by `w[axis]`, so that a texel's domain is one run of
-    /// them. The points of one line of cells across the axis share their `w[axis]`, so the points
-    /// are counted into their lines (in the order they were located) instead of compared.
+    /// Sorts the points so that a texel's domain is one run of them: by `w[axis]` for disks (the
+    /// lost points too), by `q[axis]` along the points' widest spread for a grown domain, which
+    /// every texel shares and whose points in its ball lie within the ball's width along that
+    /// axis. The points of one line of cells across `w[axis]` share it, so the disks' points are
+    /// counted into their lines (in the order they were located) instead of compared.
     fn sort(&mut self) {
+        let order =
+            if let LatticeDomain::Grown(_) = self.lattice.domain { self.grown_order() } else { self.line_order() };
         let lattice = &mut self.lattice;
-        let lines = if lattice.axis == 0 { self.columns } else { self.rows };
+        let permute = |column: &mut Vec<f32>| {
+            if !column.is_empty() {
+                *column = order.iter().map(|&k| column[k as usize]).collect();
+            }
+        };
+        lattice.w.iter_mut().chain(&mut lattice.q).chain(&mut lattice.normal).for_each(permute);
+        permute(&mut lattice.area);
+        let axis = lattice.axis;
+        if let LatticeDomain::Disks(_) = lattice.domain {
+            lattice.lost.sort_unstable_by(|a, b| a.w[axis].total_cmp(&b.w[axis]));
+        }
+        lattice.lost_at_border = lattice.lost.iter().filter(|lost| lost.border).count() as u32;
+    }
+
+    /// The points' order by their lines of cells along `w[axis]`.
+    fn line_order(&self) -> Vec<u32> {
+        let lines = if self.lattice.axis == 0 { self.columns } else { self.rows };
         let mut next = vec![0u32; lines as usize + 1];
         for &line in &self.lines {
             next[line as usize + 1] += 1;
@@ -411,15 +431,21 @@ impl<'a> LatticeBuilder<'a> {
             order[next[line as usize] as usize] = k as u32;
             next[line as usize] += 1;
         }
-        let permute = |column: &mut Vec<f32>| {
-            if !column.is_empty() {
-                *column = order.iter().map(|&k| column[k as usize]).collect();
-            }
+        order
+    }
+
+    /// The points' order along the coordinate of `q` of widest spread, which becomes the axis.
+    fn grown_order(&mut self) -> Vec<u32> {
+        let q = &self.lattice.q;
+        let spread = |column: &Vec<f32>| {
+            let (low, high) = column.iter().fold((f32::MAX, f32::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+            high - low
         };
-        lattice.w.iter_mut().chain(&mut lattice.q).chain(&mut lattice.normal).for_each(permute);
-        permute(&mut lattice.area);
-        let axis = lattice.axis;
-        lattice.lost.sort_unstable_by(|a, b| a.w[axis].total_cmp(&b.w[axis]));
-        lattice.lost_at_border = lattice.lost.iter().filter(|lost| lost.border).count() as u32;
+        let axis = (0..3).max_by(|&a, &b| spread(&q[a]).total_cmp(&spread(&q[b]))).unwrap_or(0);
+        let key = &q[axis];
+        let mut order: Vec<u32> = (0..key.len() as u32).collect();
+        order.sort_unstable_by(|&a, &b| key[a as usize].total_cmp(&key[b as usize]));
+        self.lattice.axis = axis;
+        order
     }
 }

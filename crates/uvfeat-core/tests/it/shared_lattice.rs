@@ -9,7 +9,9 @@ use glam::{DVec2, DVec3, Vec2};
 use uvfeat_core::features::Feature;
 use uvfeat_core::lookup::Lookup;
 use uvfeat_core::output::FeatureMaps;
-use uvfeat_core::sampling::{centre_at, LatticeDomain, SamplingPath, TileLattice, TilePlane};
+use uvfeat_core::sampling::{
+    centre_at, texel_point, LatticeDomain, LatticeTexel, Reach, SamplingPath, TileLattice, TilePlane,
+};
 use uvfeat_core::settings::ComputeSettings;
 use uvfeat_core::shapes::{ellipsoid, torus, uv_sphere};
 use uvfeat_core::Atlas;
@@ -161,7 +163,8 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
         let inside = (0..lattice.len()).filter(|&k| point(k).distance(place) < 1.25).count();
         assert!((246..=266).contains(&inside), "{inside} points in a domain of 256");
         // The run holds every point of the domain, and the padding after the last point is inert.
-        let run = lattice.run(place);
+        let texel = LatticeTexel { place, position: glam::Vec3::ZERO, normal: glam::Vec3::Z };
+        let run = lattice.run(&texel, 0.0);
         assert!((0..lattice.len()).filter(|&k| point(k).distance(place) < 1.25).all(|k| run.contains(&k)));
         assert!(run.end <= lattice.len() + TileLattice::PADDING);
     }
@@ -171,6 +174,31 @@ fn a_lattice_holds_n_points_per_domain_and_a_texel_reads_one_run_of_them() {
     let area: f64 = lattice.area.iter().map(|&a| f64::from(a)).sum();
     let cell = f64::from(lattice.spacing).powi(2) * (0.05f64).powi(2);
     assert!((area / (lattice.len() as f64 * cell) - 1.0).abs() < 1e-3, "{area} for {} cells", lattice.len());
+}
+
+#[test]
+fn a_texel_of_a_grown_domain_reads_a_run_holding_every_point_of_its_ball() {
+    let atlas = atlas(&uvfeat_core::shapes::plane(1.0, 64), 512);
+    let sampler = settings(0.05, SamplingPath::Shared).sampler();
+    let centre = centre_at(&atlas, DVec2::new(0.5, 0.5), Lookup::Triangle).expect("a centre");
+    let plane = TilePlane::new(centre, &sampler);
+    let texels: Vec<LatticeTexel> = [DVec2::ZERO, DVec2::new(0.03, 0.01), DVec2::new(-0.02, 0.04)]
+        .map(|offset| {
+            let point = texel_point(&atlas, centre.uv + offset).expect("a texel point");
+            LatticeTexel { place: plane.place(point.uv), position: point.position, normal: point.normal }
+        })
+        .to_vec();
+    let places: Vec<Vec2> = texels.iter().map(|t| t.place).collect();
+    let domain = LatticeDomain::Grown(Reach::uniform(1.5));
+    let lattice = TileLattice::build(&atlas, &plane, &places, domain, 256, 0, &sampler).expect("a lattice");
+    let ball = 0.05f32;
+    for texel in &texels {
+        let q = |k: usize| glam::Vec3::new(lattice.q[0][k], lattice.q[1][k], lattice.q[2][k]);
+        let in_ball: Vec<usize> = (0..lattice.len()).filter(|&k| q(k).distance(texel.position) < ball).collect();
+        let run = lattice.run(texel, ball);
+        assert!(in_ball.len() > 100 && in_ball.iter().all(|k| run.contains(k)), "{} points in the ball", in_ball.len());
+        assert!(run.len() < lattice.len(), "the run is a slab of the domain, not all {} points", lattice.len());
+    }
 }
 
 #[test]
