@@ -54,6 +54,28 @@ def test_compute_command_writes_per_vertex_files_maps_and_summary(tmp_path):
     assert main(["compute", str(path), "--radius", "-1", "--out", str(out)]) == 2
 
 
+def test_compute_command_leaves_no_import_thread_behind(tmp_path, capsys, monkeypatch):
+    """matplotlib is imported on a thread while the features run; a thread left importing could
+    hang a process forked later (batch workers), so the command joins it, even when it fails
+    (here the import is slowed down, as on a cold start, so that a thread not joined is caught)."""
+    import threading
+    import time
+
+    from uvfeat.cli import compute
+
+    monkeypatch.setattr(compute, "import_picture_modules", lambda: time.sleep(1.0))
+
+    path = tmp_path / "ico.obj"
+    trimesh.creation.icosphere(2).export(path)
+    blocked = tmp_path / "not_a_directory"
+    blocked.write_text("a file where the output directory should go")
+    options = ["--resolution", "128", "--compute-resolution", "32", "--samples", "32"]
+    assert main(["compute", str(path), *options, "--out", str(tmp_path / "out")]) == 0
+    assert main(["compute", str(path), *options, "--out", str(blocked / "out")]) == 2
+    assert "error: Not a directory" in capsys.readouterr().err
+    assert not [t for t in threading.enumerate() if t.name == "uvfeat-import-matplotlib"]
+
+
 def test_compute_command_with_the_fit_saves_principal_directions(tmp_path):
     import numpy as np
 

@@ -37,6 +37,9 @@ def main(argv: list[str] | None = None) -> int:
     except UvfeatError as exc:
         console().print(f"[red]error:[/red] {exc}")
         return 2
+    except OSError as exc:  # an output folder that cannot be made or written, a full disk
+        console().print(f"[red]error:[/red] {exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
+        return 2
 
 
 #: Allocations between two collections of the youngest generation while the program runs

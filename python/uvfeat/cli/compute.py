@@ -3,6 +3,9 @@ pictures."""
 
 from __future__ import annotations
 
+import contextlib
+import threading
+
 from ..feature_files import FeatureJob, write_feature_files
 from .common import add_computation_options, add_feature_command_options, on_file, print_notes_and_outputs, steps
 
@@ -17,10 +20,38 @@ def add_command(commands) -> None:
     parser.set_defaults(handler=on_file(write_features))
 
 
+def import_picture_modules() -> None:
+    """Imports what the pictures draw with (see :func:`picture_modules_loading`)."""
+    try:
+        from matplotlib import figure  # noqa: F401
+        from matplotlib.backends import backend_agg  # noqa: F401
+    except ImportError:
+        pass  # the pictures' own import says what is missing
+
+
+@contextlib.contextmanager
+def picture_modules_loading(pictures: bool):
+    """Imports matplotlib's figure and Agg canvas on a thread while the block runs, when it will
+    draw pictures: the atlas and the features run in Rust without the GIL, so the import (0.7 s
+    on the development machine, most of it matplotlib setting up its artists' docstrings)
+    overlaps them. The thread is joined when the block ends, so none outlives the command (a
+    process forked while a thread holds an import lock hangs in its next import); the main
+    thread's own imports of these modules wait for it, holding no import lock of their own."""
+    if not pictures:
+        yield
+        return
+    thread = threading.Thread(target=import_picture_modules, name="uvfeat-import-matplotlib", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        thread.join()
+
+
 def write_features(mesh, args, console, load_notes: list[str], started: float) -> dict:
     """Computes the features at every radius and writes per-vertex files, maps and a summary."""
     job = FeatureJob.from_args(args)
-    with steps(console, 2 + 2 * len(job.radii)) as advance:
+    with steps(console, 2 + 2 * len(job.radii)) as advance, picture_modules_loading(job.pictures):
         atlas, summary = write_feature_files(mesh, job, args.out, load_notes, started, advance)
     console.print(atlas.summary())
     for radius, info in summary["radii"].items():
