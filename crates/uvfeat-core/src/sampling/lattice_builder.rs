@@ -9,6 +9,7 @@ use super::pattern::pcg_hash;
 use super::reach::{Reach, DIRECTIONS};
 use super::settings::SamplerSettings;
 use crate::atlas::Atlas;
+use crate::mesh::compressed_rows;
 use crate::raster::FacePatch;
 use crate::relocation::{interior_of_chart, locate_with, Home, Located, Relocation};
 use glam::{DMat2, IVec2, Vec2, Vec3};
@@ -416,22 +417,10 @@ impl<'a> LatticeBuilder<'a> {
         lattice.lost_at_border = lattice.lost.iter().filter(|lost| lost.border).count() as u32;
     }
 
-    /// The points' order by their lines of cells along `w[axis]`.
+    /// The points' order by their lines of cells along `w[axis]`, in the order they were kept.
     fn line_order(&self) -> Vec<u32> {
         let lines = if self.lattice.axis == 0 { self.columns } else { self.rows };
-        let mut next = vec![0u32; lines as usize + 1];
-        for &line in &self.lines {
-            next[line as usize + 1] += 1;
-        }
-        for k in 1..next.len() {
-            next[k] += next[k - 1];
-        }
-        let mut order = vec![0u32; self.lines.len()];
-        for (k, &line) in self.lines.iter().enumerate() {
-            order[next[line as usize] as usize] = k as u32;
-            next[line as usize] += 1;
-        }
-        order
+        compressed_rows(lines as usize, self.lines.iter().enumerate().map(|(k, &line)| (line, k as u32))).1
     }
 
     /// The points' order along the coordinate of `q` of widest spread, which becomes the axis.
