@@ -28,6 +28,9 @@ const SMALL_CHART: usize = 32;
 /// Sweeps of the inner vertices' mean placement.
 const SWEEPS: usize = 200;
 
+/// Rings of the enclosing chart's faces a hole may widen by (see [`widen`]).
+const WIDENINGS: usize = 2;
+
 /// Merges the fragments that exactly one chart encloses into it, and numbers the charts and UV
 /// vertices anew without the merged ones.
 pub(super) fn merge_enclosed_fragments(graph: &FaceGraph, charts: &mut Charts) {
@@ -76,16 +79,47 @@ pub(super) fn merge_enclosed_fragments(graph: &FaceGraph, charts: &mut Charts) {
         if open || around.len() != 1 || fragment.len() > MAX_FRAGMENT_FACES {
             continue;
         }
-        merged |= fill(graph, charts, &face_chart, &fragment, around[0]);
+        // Where the hole's border bends too much for the mean placement, the hole widens by rings
+        // of the chart's own faces, whose UVs are placed anew with the fragment's.
+        let chart = around[0];
+        let mut region = fragment;
+        for ring in 0..=WIDENINGS {
+            if fill(graph, charts, &face_chart, &region, chart) {
+                merged = true;
+                break;
+            }
+            if ring < WIDENINGS && !widen(graph, &face_chart, &mut region, chart) {
+                break;
+            }
+        }
     }
     if merged {
         renumber(charts);
     }
 }
 
-/// Fills the hole `fragment` in `chart`; `false` (and nothing changed) where the filled faces would
-/// not be injective or the fragment is not a disk.
+/// Adds to `region` the faces of `chart` across its edges; `false` where it reaches another chart
+/// or a border (the region would no longer be a hole in `chart`).
+fn widen(graph: &FaceGraph, face_chart: &[u32], region: &mut Vec<u32>, chart: u32) -> bool {
+    let mut ring: Vec<u32> = region.iter().flat_map(|&f| graph.neighbours[f as usize]).collect();
+    ring.sort_unstable();
+    ring.dedup();
+    ring.retain(|g| !region.contains(g));
+    if ring.iter().any(|&g| g == NO_FACE || face_chart[g as usize] != chart) {
+        return false;
+    }
+    region.extend(ring);
+    true
+}
+
+/// Fills the hole `fragment` (faces of small charts, and of `chart` once widened) in `chart`;
+/// `false` (and nothing changed) where the filled faces would not be injective or the hole is not
+/// a disk.
 fn fill(graph: &FaceGraph, charts: &mut Charts, face_chart: &[u32], fragment: &[u32], chart: u32) -> bool {
+    let mut sorted = fragment.to_vec();
+    sorted.sort_unstable();
+    // The chart's faces around the hole, which keep their UVs.
+    let around = |g: u32| g != NO_FACE && face_chart[g as usize] == chart && sorted.binary_search(&g).is_err();
     // The chart's UV of each border vertex, from the chart's faces across the fragment's edges.
     let mut border: HashMap<u32, u32> = HashMap::new();
     let mut edges = Vec::new();
@@ -94,7 +128,7 @@ fn fill(graph: &FaceGraph, charts: &mut Charts, face_chart: &[u32], fragment: &[
         for (k, &g) in graph.neighbours[f as usize].iter().enumerate() {
             let (a, b) = (corners[k], corners[(k + 1) % 3]);
             edges.push((a.min(b), a.max(b)));
-            if g != NO_FACE && face_chart[g as usize] == chart {
+            if around(g) {
                 let other = graph.faces[g as usize];
                 for v in [a, b] {
                     let at = other.iter().position(|&w| w == v).expect("neighbours share their edge");
@@ -134,15 +168,14 @@ fn fill(graph: &FaceGraph, charts: &mut Charts, face_chart: &[u32], fragment: &[
     // The chart's turning sense, from one of its faces around the hole.
     let orientation = |t: [DVec2; 3]| (t[1] - t[0]).perp_dot(t[2] - t[0]);
     let Some(sense) = fragment.iter().flat_map(|&f| graph.neighbours[f as usize]).find_map(|g| {
-        (g != NO_FACE && face_chart[g as usize] == chart)
-            .then(|| orientation(charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize])).signum())
+        around(g).then(|| orientation(charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize])).signum())
     }) else {
         return false;
     };
     let scale = fragment
         .iter()
         .flat_map(|&f| graph.neighbours[f as usize])
-        .filter(|&g| g != NO_FACE && face_chart[g as usize] == chart)
+        .filter(|&g| around(g))
         .map(|g| orientation(charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize])).abs())
         .fold(0.0, f64::max);
     let turns_right = |f: u32| sense * orientation(graph.faces[f as usize].map(|v| uv[&v])) > 1e-6 * scale;
@@ -262,21 +295,47 @@ mod tests {
     }
 
     #[test]
-    fn fragments_between_two_charts_on_the_border_or_that_would_fold_stay_charts() {
-        for (column, row, split, fold) in [(4, 4, Some(0.5), false), (0, 4, None, false), (3, 4, None, true)] {
+    fn fragments_between_two_charts_or_on_the_border_stay_charts() {
+        for (column, row, split) in [(4, 4, Some(0.5)), (0, 4, None)] {
             let (positions, faces, mut charts) = charted_grid(column, row, split);
-            if fold {
-                // The hole's border vertex right of its centre moves, in the chart around it, to the
-                // centre's left: the faces of the fan next to it would turn the other way.
-                let right = (4 * 9 + 4) as usize;
-                let k = (0..charts.uvs.len())
-                    .find(|&k| charts.uv_chart[k] == 0 && charts.uvs[k] == positions[right].truncate())
-                    .expect("the chart's UV of the vertex");
-                charts.uvs[k].x -= 0.2;
-            }
             let (uvs, uv_faces, n_charts) = (charts.uvs.clone(), charts.uv_faces.clone(), charts.n_charts);
             merged(&positions, &faces, &mut charts);
             assert_eq!((charts.uvs, charts.uv_faces, charts.n_charts), (uvs, uv_faces, n_charts));
         }
+    }
+
+    #[test]
+    fn a_hole_the_mean_placement_would_fold_is_widened_until_it_fills() {
+        let (positions, faces, mut charts) = charted_grid(3, 4, None);
+        // The hole's border vertex right of its centre moves, in the chart around it, to the
+        // centre's left: the faces of the fan next to it would turn the other way.
+        let right = (4 * 9 + 4) as usize;
+        let k = (0..charts.uvs.len())
+            .find(|&k| charts.uv_chart[k] == 0 && charts.uvs[k] == positions[right].truncate())
+            .expect("the chart's UV of the vertex");
+        charts.uvs[k].x -= 0.2;
+        let neighbours = face_neighbours(&faces);
+        let flat = vec![DVec3::Z; faces.len()];
+        let graph = FaceGraph {
+            positions: &positions,
+            faces: &faces,
+            neighbours: &neighbours,
+            normals: &flat,
+            smoothed_normals: &flat,
+            centroids: &flat,
+            cell: 1.0,
+        };
+        let face_chart: Vec<u32> = charts.uv_faces.iter().map(|t| charts.uv_chart[t[0] as usize]).collect();
+        let fragment: Vec<u32> = (0..faces.len() as u32).filter(|&f| face_chart[f as usize] == 1).collect();
+        let (uvs, uv_faces) = (charts.uvs.clone(), charts.uv_faces.clone());
+        assert!(!fill(&graph, &mut charts, &face_chart, &fragment, 0));
+        assert_eq!((&charts.uvs, &charts.uv_faces), (&uvs, &uv_faces), "a refused fill changed the charts");
+        merge_enclosed_fragments(&graph, &mut charts);
+        assert_eq!(charts.n_charts, 1);
+        let area = |f: usize| {
+            let uv = charts.uv_faces[f].map(|k| charts.uvs[k as usize]);
+            (uv[1] - uv[0]).perp_dot(uv[2] - uv[0])
+        };
+        assert!((0..faces.len()).all(|f| area(f) > 0.0), "a face turns the wrong way");
     }
 }
