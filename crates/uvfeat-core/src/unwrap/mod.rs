@@ -8,7 +8,7 @@
 //! 20 s for 100K faces on two cores) takes seconds per ten thousand faces.
 
 mod charted_surface;
-mod enclosed;
+mod fragments;
 mod pack;
 mod segment;
 
@@ -102,7 +102,7 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
         cell: 2.0 * mean_edge_length(&charted, &welded_faces),
     };
     let mut charts = segment::grow_charts(&graph, segment::Cone::new(options.max_angle_degrees));
-    enclosed::merge_enclosed_fragments(&graph, &mut charts);
+    fragments::merge_fragments(&graph, &mut charts);
     pack::pack(
         &mut charts.uvs,
         &charts.uv_faces,

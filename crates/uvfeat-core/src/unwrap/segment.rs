@@ -30,6 +30,24 @@ pub(super) struct Charts {
     pub uv_chart: Vec<u32>,
     /// Number of charts.
     pub n_charts: usize,
+    /// (n_charts) the plane each chart is projected onto.
+    pub frames: Vec<ChartFrame>,
+}
+
+/// The plane a chart is projected onto: a chart's UVs are its vertices' [`ChartFrame::project`]
+/// (until the packing moves them).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct ChartFrame {
+    pub origin: DVec3,
+    pub t1: DVec3,
+    pub t2: DVec3,
+}
+
+impl ChartFrame {
+    /// The point `p`'s UV in the chart.
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        DVec2::new((p - self.origin).dot(self.t1), (p - self.origin).dot(self.t2))
+    }
 }
 
 /// What the growth reads of the mesh: welded faces, their neighbours and their shape.
@@ -73,6 +91,7 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
         uvs: Vec::with_capacity(graph.positions.len() * 5 / 4),
         uv_chart: Vec::with_capacity(graph.positions.len() * 5 / 4),
         n_charts: 0,
+        frames: Vec::new(),
     };
     let mut face_chart = vec![u32::MAX; n_faces];
     let mut growth = Growth::new(graph.positions.len(), n_faces, graph.cell);
@@ -108,6 +127,7 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
             // No corner has a UV (all the faces around collapsed too): a point in a chart of its own.
             charts.uvs.push(DVec2::ZERO);
             charts.uv_chart.push(charts.n_charts as u32);
+            charts.frames.push(ChartFrame::default());
             charts.n_charts += 1;
             charts.uvs.len() as u32 - 1
         });
@@ -168,8 +188,9 @@ impl Growth {
             own
         };
         let (t1, t2) = axis.any_orthonormal_pair();
-        let origin = graph.centroids[seed as usize];
-        let project = |p: DVec3| DVec2::new((p - origin).dot(t1), (p - origin).dot(t2));
+        let frame = ChartFrame { origin: graph.centroids[seed as usize], t1, t2 };
+        charts.frames.push(frame);
+        let project = |p: DVec3| frame.project(p);
         self.grid.clear();
         self.large.clear();
         self.held.clear();
@@ -213,7 +234,7 @@ impl Growth {
             for &g in &graph.neighbours[f as usize] {
                 if g != NO_FACE && face_chart[g as usize] == u32::MAX && self.face_seen[g as usize] != chart {
                     self.face_seen[g as usize] = chart;
-                    let distance = graph.centroids[g as usize].distance_squared(origin);
+                    let distance = graph.centroids[g as usize].distance_squared(frame.origin);
                     // Non-negative doubles order like their bit patterns.
                     self.heap.push(Reverse((distance.to_bits(), g)));
                 }
