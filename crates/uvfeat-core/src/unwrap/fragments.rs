@@ -357,7 +357,8 @@ mod tests {
         (positions, faces, charts)
     }
 
-    fn merged(positions: &[DVec3], faces: &[[u32; 3]], charts: &mut Charts) {
+    /// Runs `body` on the face graph of a flat mesh.
+    fn on_graph<T>(positions: &[DVec3], faces: &[[u32; 3]], body: impl FnOnce(&FaceGraph) -> T) -> T {
         let neighbours = face_neighbours(faces);
         let flat = vec![DVec3::Z; faces.len()];
         let graph = FaceGraph {
@@ -369,7 +370,11 @@ mod tests {
             centroids: &flat,
             cell: 1.0,
         };
-        merge_fragments(&graph, charts);
+        body(&graph)
+    }
+
+    fn merged(positions: &[DVec3], faces: &[[u32; 3]], charts: &mut Charts) {
+        on_graph(positions, faces, |graph| merge_fragments(graph, charts));
     }
 
     /// Every face's UVs are its corners' projection, and its chart the one `chart_of` expects.
@@ -431,26 +436,17 @@ mod tests {
     #[test]
     fn placed_faces_overlap_the_charts_faces_only_where_they_cover_them() {
         let (positions, faces, charts) = charted_grid(3, 4, Some(0.4));
-        let neighbours = face_neighbours(&faces);
-        let flat = vec![DVec3::Z; faces.len()];
-        let graph = FaceGraph {
-            positions: &positions,
-            faces: &faces,
-            neighbours: &neighbours,
-            normals: &flat,
-            smoothed_normals: &flat,
-            centroids: &flat,
-            cell: 1.0,
-        };
-        let layout = Layout::new(&graph, &charts);
-        let fragment: Vec<u32> = (0..faces.len() as u32).filter(|&f| layout.face_chart[f as usize] == 1).collect();
-        let of_chart = |g: u32| layout.face_chart[g as usize] == 0;
-        let shifted = |f: u32, shift: DVec2| faces[f as usize].map(|v| positions[v as usize].truncate() + shift);
-        assert!(!overlaps(&charts, &layout, &fragment, 0, &|f| shifted(f, DVec2::ZERO), &of_chart));
-        assert!(overlaps(&charts, &layout, &fragment, 0, &|f| shifted(f, DVec2::new(-0.125, 0.0)), &of_chart));
-        // The fragment's faces over one another.
-        let folded = |f: u32| shifted(if f == fragment[0] { fragment[1] } else { f }, DVec2::ZERO);
-        assert!(overlaps(&charts, &layout, &fragment, 0, &folded, &|_| false));
+        on_graph(&positions, &faces, |graph| {
+            let layout = Layout::new(graph, &charts);
+            let fragment: Vec<u32> = (0..faces.len() as u32).filter(|&f| layout.face_chart[f as usize] == 1).collect();
+            let of_chart = |g: u32| layout.face_chart[g as usize] == 0;
+            let shifted = |f: u32, shift: DVec2| faces[f as usize].map(|v| positions[v as usize].truncate() + shift);
+            assert!(!overlaps(&charts, &layout, &fragment, 0, &|f| shifted(f, DVec2::ZERO), &of_chart));
+            assert!(overlaps(&charts, &layout, &fragment, 0, &|f| shifted(f, DVec2::new(-0.125, 0.0)), &of_chart));
+            // The fragment's faces over one another.
+            let folded = |f: u32| shifted(if f == fragment[0] { fragment[1] } else { f }, DVec2::ZERO);
+            assert!(overlaps(&charts, &layout, &fragment, 0, &folded, &|_| false));
+        });
     }
 
     #[test]
@@ -463,28 +459,19 @@ mod tests {
             .find(|&k| charts.uv_chart[k] == 0 && charts.uvs[k] == positions[right].truncate())
             .expect("the chart's UV of the vertex");
         charts.uvs[k].x -= 0.2;
-        let neighbours = face_neighbours(&faces);
-        let flat = vec![DVec3::Z; faces.len()];
-        let graph = FaceGraph {
-            positions: &positions,
-            faces: &faces,
-            neighbours: &neighbours,
-            normals: &flat,
-            smoothed_normals: &flat,
-            centroids: &flat,
-            cell: 1.0,
-        };
-        let layout = Layout::new(&graph, &charts);
-        let fragment: Vec<u32> = (0..faces.len() as u32).filter(|&f| layout.face_chart[f as usize] == 1).collect();
-        let (uvs, uv_faces) = (charts.uvs.clone(), charts.uv_faces.clone());
-        assert!(!merge(&graph, &mut charts, &layout, &fragment, 0));
-        assert_eq!((&charts.uvs, &charts.uv_faces), (&uvs, &uv_faces), "a refused merge changed the charts");
-        merge_fragments(&graph, &mut charts);
-        assert_eq!(charts.n_charts, 1);
-        let area = |f: usize| {
-            let uv = charts.uv_faces[f].map(|k| charts.uvs[k as usize]);
-            (uv[1] - uv[0]).perp_dot(uv[2] - uv[0])
-        };
-        assert!((0..faces.len()).all(|f| area(f) > 0.0), "a face turns the wrong way");
+        on_graph(&positions, &faces, |graph| {
+            let layout = Layout::new(graph, &charts);
+            let fragment: Vec<u32> = (0..faces.len() as u32).filter(|&f| layout.face_chart[f as usize] == 1).collect();
+            let (uvs, uv_faces) = (charts.uvs.clone(), charts.uv_faces.clone());
+            assert!(!merge(graph, &mut charts, &layout, &fragment, 0));
+            assert_eq!((&charts.uvs, &charts.uv_faces), (&uvs, &uv_faces), "a refused merge changed the charts");
+            merge_fragments(graph, &mut charts);
+            assert_eq!(charts.n_charts, 1);
+            let area = |f: usize| {
+                let uv = charts.uv_faces[f].map(|k| charts.uvs[k as usize]);
+                (uv[1] - uv[0]).perp_dot(uv[2] - uv[0])
+            };
+            assert!((0..faces.len()).all(|f| area(f) > 0.0), "a face turns the wrong way");
+        });
     }
 }
