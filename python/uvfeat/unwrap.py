@@ -5,8 +5,9 @@ Two unwrappers, chosen by ``method`` wherever an atlas is built (:meth:`uvfeat.M
 
 - ``"charts"`` (default): uvfeat's own normal-cone charts, each projected onto the plane across
   its cone's axis and checked to be injective as it grows, packed as bitmaps; rough parts (a
-  scan's noise) are charted on a smoothed copy of the surface. 0.1-0.35 s for 70K-280K faces;
-  the features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
+  scan's noise) are charted on a smoothed copy of the surface, and the few faces that still fold
+  join a chart beside them where that stays injective. 0.1-0.6 s for 70K-280K faces; the
+  features are as accurate on it as on xatlas's atlas (docs/BENCHMARKS.md).
 - ``"xatlas"``: xatlas's optimised charts (fewer, rounder, less stretched; about 20 s for 100K
   faces on two cores).
 
