@@ -82,6 +82,22 @@ def test_with_atlas_builds_a_multi_chart_atlas(method):
     assert uvfeat.Atlas(fresh, 512).diagnostics["overlapping_texels"] == 0
 
 
+def test_own_charts_of_a_noisy_scan_merge_its_fragments_and_stay_injective():
+    """A 200K-face sphere with normal noise of 0.2 % of its diagonal (docs/PEERS.md's noisy
+    sphere, noise along the radius): the faces that fold in every projection used to be 255
+    fragments beside 20 charts; they join the charts beside them (DESIGN.md §1.1.1). With this
+    seed a fragment beside two charts, all of whose border vertices one of them held, was taken
+    for a hole in it and overlapped its faces."""
+    sphere = uvfeat.shapes.uv_sphere(1.0, 448, 224)
+    radial = sphere.positions / np.linalg.norm(sphere.positions, axis=1)[:, None]
+    positions = sphere.positions + np.random.default_rng(0).normal(0.0, 0.002 * 2 * np.sqrt(3), len(radial))[:, None] * radial
+    uvs, uv_faces = uvfeat.unwrap.chart_uvs(positions, sphere.faces, cache=False)
+    atlas = uvfeat.Atlas(uvfeat.Mesh(positions, sphere.faces, uvs, uv_faces), 1024)
+    diagnostics = atlas.diagnostics
+    assert diagnostics["charts"] < 100, diagnostics["charts"]
+    assert (diagnostics["overlapping_texels"], diagnostics["mirrored_uv_faces"]) == (0, 0)
+
+
 def test_with_atlas_names_a_bad_method_or_option():
     sphere = uvfeat.shapes.uv_sphere(1.0, 16, 8)
     bare = uvfeat.Mesh(sphere.positions, sphere.faces)

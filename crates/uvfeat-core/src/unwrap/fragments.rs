@@ -177,9 +177,11 @@ fn merge(graph: &FaceGraph, charts: &mut Charts, layout: &Layout, region: &[u32]
     vertices.sort_unstable();
     vertices.dedup();
     let at = |v: u32| vertices.binary_search(&v).expect("a vertex of the region");
-    // The region's edges, and its vertices on its border (with the chart or another).
+    // The region's edges, its vertices on its border (with the chart or another), and whether the
+    // chart is across every edge of that border: then the region is a hole in the chart.
     let mut edges = Vec::new();
     let mut on_border = vec![false; vertices.len()];
+    let mut enclosed = true;
     for &f in region {
         let corners = graph.faces[f as usize];
         for (k, &g) in graph.neighbours[f as usize].iter().enumerate() {
@@ -188,6 +190,7 @@ fn merge(graph: &FaceGraph, charts: &mut Charts, layout: &Layout, region: &[u32]
             if g == NO_FACE || !in_region(g) {
                 on_border[at(a)] = true;
                 on_border[at(b)] = true;
+                enclosed &= of_chart(g);
             }
         }
     }
@@ -209,7 +212,6 @@ fn merge(graph: &FaceGraph, charts: &mut Charts, layout: &Layout, region: &[u32]
     if sense == 0.0 {
         return false;
     }
-    let enclosed = (0..vertices.len()).all(|i| !on_border[i] || held[i].is_some());
     // A hole must be a disk (V - E + F = 1), so that its fixed border makes it injective.
     if enclosed && vertices.len() + region.len() != edges.len() + 1 {
         return false;
