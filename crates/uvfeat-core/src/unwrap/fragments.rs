@@ -16,7 +16,7 @@
 //! none of the chart's faces nor another merged face; a hole that would fold widens by rings of the
 //! chart's own faces, which are placed anew with it. Elsewhere the fragment stays a chart.
 
-use super::segment::{interiors_overlap, Charts, FaceGraph, NO_FACE};
+use super::segment::{boxes_apart, interiors_overlap, uv_box, Charts, FaceGraph, NO_FACE};
 use crate::mesh::{compressed_rows, has_repeated_corner};
 use glam::DVec2;
 
@@ -235,11 +235,7 @@ fn merge(graph: &FaceGraph, charts: &mut Charts, layout: &Layout, region: &[u32]
             edges.iter().filter_map(|&(a, b)| (a == v).then_some(b).or((b == v).then_some(a))).map(at).collect()
         })
         .collect();
-    for _ in 0..SWEEPS {
-        for (&i, ring) in inner.iter().zip(&rings) {
-            uv[i] = ring.iter().map(|&j| uv[j]).sum::<DVec2>() / ring.len() as f64;
-        }
-    }
+    mean_placement(&mut uv, &inner, &rings);
     let placed = |f: u32| graph.faces[f as usize].map(|v| uv[at(v)]);
     if !region.iter().all(|&f| sense * orientation(placed(f)) > 1e-6 * scale) {
         return false;
@@ -264,6 +260,16 @@ fn merge(graph: &FaceGraph, charts: &mut Charts, layout: &Layout, region: &[u32]
     true
 }
 
+/// Moves each vertex `inner[k]` of `uv` to the mean of its neighbours `rings[k]`, [`SWEEPS`]
+/// times over (Gauss–Seidel on Tutte's embedding, the others fixed).
+fn mean_placement(uv: &mut [DVec2], inner: &[usize], rings: &[Vec<usize>]) {
+    for _ in 0..SWEEPS {
+        for (&i, ring) in inner.iter().zip(rings) {
+            uv[i] = ring.iter().map(|&j| uv[j]).sum::<DVec2>() / ring.len() as f64;
+        }
+    }
+}
+
 /// Whether a face of `region`, placed by `placed`, overlaps another or a face of `chart` (those
 /// `of_chart` says are the chart's own).
 fn overlaps(
@@ -275,16 +281,13 @@ fn overlaps(
     of_chart: &dyn Fn(u32) -> bool,
 ) -> bool {
     let triangles: Vec<[DVec2; 3]> = region.iter().map(|&f| placed(f)).collect();
-    let (low, high) =
-        triangles.iter().flatten().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+    let region_box = uv_box(triangles.iter().flatten().copied());
     let across_region =
         triangles.iter().enumerate().any(|(i, a)| triangles[i + 1..].iter().any(|b| interiors_overlap(a, b)));
     across_region
         || layout.faces_of_chart(chart).iter().filter(|&&g| of_chart(g)).any(|&g| {
             let other = charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize]);
-            let (other_low, other_high) = (other[0].min(other[1]).min(other[2]), other[0].max(other[1]).max(other[2]));
-            let apart = other_low.cmpge(high).any() || low.cmpge(other_high).any();
-            !apart && triangles.iter().any(|t| interiors_overlap(t, &other))
+            !boxes_apart(uv_box(other), region_box) && triangles.iter().any(|t| interiors_overlap(t, &other))
         })
 }
 

@@ -254,12 +254,12 @@ impl Growth {
     /// Whether face `f` (projected to `corners`) overlaps a face the chart holds. An edge
     /// neighbour cannot: both turn the same way, so they lie on either side of their shared edge.
     fn overlaps(&self, graph: &FaceGraph, f: u32, corners: &[DVec2; 3], charts: &Charts) -> bool {
-        let (low, high) = (corners[0].min(corners[1]).min(corners[2]), corners[0].max(corners[1]).max(corners[2]));
+        let own = uv_box(*corners);
         let overlapping = |&g: &u32| {
             let other = charts.uv_faces[g as usize].map(|k| charts.uvs[k as usize]);
-            let (other_low, other_high) = (other[0].min(other[1]).min(other[2]), other[0].max(other[1]).max(other[2]));
-            let apart = other_low.cmpge(high).any() || low.cmpge(other_high).any();
-            !apart && !graph.neighbours[f as usize].contains(&g) && interiors_overlap(corners, &other)
+            !boxes_apart(uv_box(other), own)
+                && !graph.neighbours[f as usize].contains(&g)
+                && interiors_overlap(corners, &other)
         };
         match self.cell_span(corners) {
             Some((x0, y0, x1, y1)) => {
@@ -314,6 +314,17 @@ impl Hasher for CellHasher {
     fn write_u64(&mut self, value: u64) {
         self.0 = (self.0.rotate_left(5) ^ value).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
     }
+}
+
+/// The box `(low, high)` of some UV points.
+pub(super) fn uv_box(points: impl IntoIterator<Item = DVec2>) -> (DVec2, DVec2) {
+    points.into_iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(low, high), p| (low.min(p), high.max(p)))
+}
+
+/// Whether two boxes share no interior point (boxes that only touch are apart): the cheap test
+/// before [`interiors_overlap`].
+pub(super) fn boxes_apart(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
+    a.0.cmpge(b.1).any() || b.0.cmpge(a.1).any()
 }
 
 /// Whether the interiors of two triangles intersect (separating-axis test on their six edge
