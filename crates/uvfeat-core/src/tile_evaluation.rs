@@ -11,7 +11,7 @@
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::evaluation::{evaluate_point, Patterns, PixelResult};
-use crate::features::{lattice_statistics, CurvatureMethod, LatticeNeighbourhood, VolumeWeighting};
+use crate::features::{lattice_statistics, CurvatureMethod, LatticeNeighbourhood, SumsKernel, VolumeWeighting};
 use crate::relocation::{walk, walk_across, Home, Located, Seams};
 use crate::sampling::{
     fast_path_applies, grow_marked, probed_reach, secant_distortion, texel_point, Centre, LatticeDomain, LatticeTexel,
@@ -173,8 +173,9 @@ fn evaluate_group(
         let places: Vec<Vec2> = texels.iter().map(|(_, texel)| texel.place).collect();
         TileLattice::build(atlas, &plane, &places, domain, settings.samples, settings.seed, &sampler)
     };
+    let kernel = SumsKernel::detected();
     let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
-        lattice_statistics(lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
+        lattice_statistics(kernel, lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
     };
     let centre_texel = texel(&centre.texel_point(atlas.patches.origin));
     let mut marked = [false; DIRECTIONS];

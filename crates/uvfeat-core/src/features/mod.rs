@@ -5,6 +5,7 @@ mod bending_energy;
 mod curvedness;
 mod gaussian_curvature;
 mod lattice_statistics;
+mod lattice_sums;
 mod mean_curvature;
 mod open_volume;
 mod principal_curvatures;
@@ -20,6 +21,7 @@ pub use gaussian_curvature::{
     GaussianMethod,
 };
 pub use lattice_statistics::{lattice_statistics, LatticeNeighbourhood};
+pub use lattice_sums::SumsKernel;
 pub use mean_curvature::{mean_curvature, mean_curvature_error, radial_correction};
 pub use open_volume::{ball_volume, open_volume, open_volume_error};
 pub use principal_curvatures::principal_curvatures;

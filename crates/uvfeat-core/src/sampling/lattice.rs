@@ -98,6 +98,9 @@ impl TilePlane {
     }
 }
 
+/// A point given to [`TileLattice::from_points`]: `(w, q, normal, area)`.
+pub type PointRecord = (Vec2, Vec3, Vec3, f32);
+
 /// The sampling domains a lattice covers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum LatticeDomain {
@@ -110,9 +113,34 @@ pub enum LatticeDomain {
 }
 
 impl TileLattice {
-    /// Inert points after the last one, so that a pass reading [`Self::PADDING`] points at a time
-    /// never reads past the columns: far off every domain, at the origin, with no area.
-    pub const PADDING: usize = 8;
+    /// Inert points after the last one, so that a pass reading up to [`Self::PADDING`] points at a
+    /// time (16 with AVX-512) never reads past the columns: far off every domain, at the origin,
+    /// with no area.
+    pub const PADDING: usize = 16;
+
+    /// A lattice of the given points with disk domains of radius `margin`, sorted along `w.x` and
+    /// padded as the builder does: for tests and benchmarks of the sums, which need no atlas.
+    /// Points are `(w, q, normal, area)`; `with_normals` keeps the normals' columns.
+    pub fn from_points(points: &[PointRecord], margin: f32, spacing: f32, with_normals: bool) -> Self {
+        let mut sorted = points.to_vec();
+        sorted.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
+        let inert = (Vec2::INFINITY, Vec3::ZERO, Vec3::ZERO, 0.0);
+        sorted.extend(std::iter::repeat_n(inert, Self::PADDING));
+        let column = |get: &dyn Fn(&PointRecord) -> f32| sorted.iter().map(get).collect::<Vec<f32>>();
+        let normal = |k: usize| if with_normals { column(&|p| p.2[k]) } else { Vec::new() };
+        Self {
+            w: [column(&|p| p.0.x), column(&|p| p.0.y)],
+            q: [column(&|p| p.1.x), column(&|p| p.1.y), column(&|p| p.1.z)],
+            normal: [normal(0), normal(1), normal(2)],
+            area: column(&|p| p.3),
+            axis: 0,
+            lost: Vec::new(),
+            lost_at_border: 0,
+            domain: LatticeDomain::Disks(f64::from(margin)),
+            margin,
+            spacing,
+        }
+    }
 
     /// The run of points that may lie in `texel`'s domain: those whose `w[axis]` lies within the
     /// margin of its place, or, on a grown domain (which every texel shares), whose `q[axis]` lies

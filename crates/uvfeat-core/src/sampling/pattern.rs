@@ -104,7 +104,7 @@ pub fn concentric_disk(xi: DVec2) -> DVec2 {
 
 /// Grid of `n_x x n_y = n` cells with `n_x` the largest divisor of `n` not above `sqrt(n)`.
 pub fn grid_shape(n: usize) -> (usize, usize) {
-    let nx = (1..=n.max(1)).take_while(|d| d * d <= n).filter(|d| n % d == 0).last().unwrap_or(1);
+    let nx = (1..=n.max(1)).take_while(|d| d * d <= n).filter(|d| n.is_multiple_of(*d)).last().unwrap_or(1);
     (nx, n / nx)
 }
 
