@@ -2,8 +2,8 @@
 //! texel over a run of its tile's lattice points, several points at a time, in the widest copy
 //! the CPU runs ([`SumsKernel`]).
 //!
-//! The pass is bound by the vector units: on the 200K-face surfaces of docs/PEERS.md it is about
-//! half of a tile's time, and each point costs a ball test, a square root, a reciprocal and ten
+//! The pass is bound by the vector units: on the 200K-face surfaces of docs/PEERS.md it was 45 %
+//! of a tile's time with eight points at a time (25 % with sixteen), and each point costs a ball test, a square root, a reciprocal and ten
 //! products and sums. The vector copies take `1 / rho` from the hardware estimate and one Newton
 //! step (`sqrtps` and `divps` share one unit that takes 10-15 cycles for eight values each); the
 //! AVX-512 copy sums sixteen points at a time, with masks for the ball tests and a register for
@@ -17,7 +17,7 @@ use std::sync::OnceLock;
 /// Which copy of the pass runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SumsKernel {
-    /// Any CPU: eight points at a time, products and sums rounded apart, `sqrt` and a division.
+    /// Any CPU: eight points at a time, `1 / rho` from `sqrt` and a division.
     Portable,
     /// x86-64 with AVX2 and FMA: eight points in one register.
     Avx2,
@@ -67,8 +67,8 @@ pub(super) struct Thresholds {
 }
 
 /// The totals of one pass, in f64. The curvature sums leave out the constant factor `1 / r^2` of
-/// their weights, the radial sum the `1 / r` of its integrand, and the normal curvatures and the
-/// bending integrand the `-2` and `-1/2` of theirs: the caller applies them.
+/// their weights and the `-2` of the normal curvature (the pass sums `-k / 2`), the radial sum the
+/// `1 / r` of its integrand: the caller applies them.
 #[derive(Debug, Default, Clone, Copy, PartialEq)]
 pub(super) struct Totals {
     /// Points in the ball.
