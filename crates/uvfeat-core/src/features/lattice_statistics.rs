@@ -55,6 +55,8 @@ pub fn lattice_statistics(
     let grown = matches!(lattice.domain, LatticeDomain::Grown(_));
     let ramp_end = r * (ramp_centre(f64::from(RAMP * lattice.spacing)) as f32 + 0.5 * RAMP * lattice.spacing);
     let inverse_ramp_width = 1.0 / (r * RAMP * lattice.spacing);
+    // The value the pass subtracts, in f32 (the sums are shifted back by this one).
+    let shift = curvature_shift as f32;
     let thresholds = Thresholds {
         margin2: if grown { f32::INFINITY } else { margin * margin },
         // Floored so that `1 / rho^2` stays finite at radii whose square underflows.
@@ -63,7 +65,7 @@ pub fn lattice_statistics(
         rho_min2: rho_min * rho_min,
         ramp_end_in_widths: ramp_end * inverse_ramp_width,
         inverse_ramp_width,
-        half_shift: 0.5 * curvature_shift as f32,
+        half_shift: 0.5 * shift,
     };
     // No point beyond the ramp's end weighs anything.
     let run = lattice.run(texel, ramp_end);
@@ -76,7 +78,6 @@ pub fn lattice_statistics(
         elevation,
         radial: WeightedSums { wg: totals.radial_wg / radius, ..elevation },
         bending: WeightedSums { w: totals.bending_w, w2: 0.0, wg: totals.bending_wg, wg2: 0.0 },
-        // Shifted back by the value the pass subtracted (the f32 one).
         normal_curvature: unshifted(
             WeightedSums {
                 w: curvature_scale * totals.curvature_w,
@@ -84,7 +85,7 @@ pub fn lattice_statistics(
                 wg: -2.0 * curvature_scale * totals.curvature_wg,
                 wg2: 4.0 * curvature_scale * totals.curvature_wg2,
             },
-            2.0 * f64::from(thresholds.half_shift),
+            f64::from(shift),
         ),
         geodesic_disk: WeightedSums { w: totals.area, w2: 0.0, wg: 0.0, wg2: 0.0 },
     };

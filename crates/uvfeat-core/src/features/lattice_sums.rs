@@ -14,8 +14,8 @@
 use crate::sampling::{LatticeTexel, TileLattice};
 use std::sync::OnceLock;
 
-/// Which copy of the pass runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which copy of the pass runs, narrowest first (a CPU that runs one runs those before it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SumsKernel {
     /// Any CPU: eight points at a time, `1 / rho` from `sqrt` and a division.
     Portable,
@@ -26,29 +26,22 @@ pub enum SumsKernel {
 }
 
 impl SumsKernel {
-    /// The widest copy this CPU runs (checked once per process).
+    /// The widest copy this CPU runs (its features are read once per process).
     pub fn detected() -> Self {
         static KERNEL: OnceLock<SumsKernel> = OnceLock::new();
         *KERNEL.get_or_init(|| {
-            [Self::Avx512, Self::Avx2].into_iter().find(|kernel| kernel.available()).unwrap_or(Self::Portable)
+            #[cfg(target_arch = "x86_64")]
+            if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+                let avx512 = std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl");
+                return if avx512 { Self::Avx512 } else { Self::Avx2 };
+            }
+            Self::Portable
         })
     }
 
     /// `true` when this CPU runs this copy.
     pub fn available(self) -> bool {
-        match self {
-            Self::Portable => true,
-            #[cfg(target_arch = "x86_64")]
-            Self::Avx2 => std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma"),
-            #[cfg(target_arch = "x86_64")]
-            Self::Avx512 => {
-                Self::Avx2.available()
-                    && std::is_x86_feature_detected!("avx512f")
-                    && std::is_x86_feature_detected!("avx512vl")
-            }
-            #[cfg(not(target_arch = "x86_64"))]
-            Self::Avx2 | Self::Avx512 => false,
-        }
+        self <= Self::detected()
     }
 }
 
@@ -286,7 +279,7 @@ fn pass<const NORMALS: bool, const ESTIMATE: bool, const L: usize>(
     let normals = if NORMALS {
         [columns(&lattice.normal[0]), columns(&lattice.normal[1]), columns(&lattice.normal[2])]
     } else {
-        [area; 3]
+        [area; 3] // not read
     };
     for k in 0..chunks {
         let (wx, wy, qx, qy, qz, area) = (wx[k], wy[k], qx[k], qy[k], qz[k], area[k]);
