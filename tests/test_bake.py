@@ -21,7 +21,7 @@ pytest.importorskip("scipy", reason="gutter dilation needs the extra uvfeat[bake
 @pytest.fixture(scope="module")
 def spot_map():
     mesh = uvfeat.examples.spot()
-    feature = uvfeat.Atlas(mesh, resolution=512).compute("mean_curvature", "4%", compute_resolution=128,
+    feature = uvfeat.Atlas(mesh, resolution=512).compute("mean_curvature", "4%", compute_resolution=256,
                                                         samples=64)["mean_curvature"]
     return mesh, feature
 
@@ -48,11 +48,13 @@ def test_the_baked_texture_gives_back_the_per_vertex_values_without_seam_outlier
     baked, seam = read_back(mesh, dilate(fit_gutters(feature.texture, uvs, corner)))
     error = np.abs(baked - truth) / spread
     assert seam.sum() > 300 and np.isfinite(baked).all()
-    # exact inside the charts; at the seams within 1.5 % of the range (measured 1.41 % p99, 1.49 %
-    # max at this 128² texture; 0.26 / 0.42 % at 256²)
+    # exact inside the charts; at the seams within 0.4 % of the range at the 99th percentile and
+    # 0.8 % at most (measured over seeds 0-5: 0.05-0.22 % and 0.10-0.46 %). At a 128² texture the
+    # features' own sampling noise at the seams (64 samples over few texels) set the error: 1.2-3.3 %
+    # p99 by seed, and the bounds this test had there held for three seeds of six.
     assert np.median(error[~seam]) < 1e-6
-    assert np.percentile(error[seam], 99) < 0.02 and error[seam].max() < 0.025, error[seam].max()
-    # what the fit adds to a plain dilation (5.1 % p99), and what that adds to gutters left at 0
+    assert np.percentile(error[seam], 99) < 0.004 and error[seam].max() < 0.008, error[seam].max()
+    # what the fit adds to a plain dilation (1.6-2.4 % p99), and what that adds to gutters left at 0
     dilated, _ = read_back(mesh, dilate(feature.texture))
     zero, _ = read_back(mesh, np.nan_to_num(feature.texture))
     dilated_error, zero_error = ((np.abs(x - truth) / spread)[seam] for x in (dilated, zero))
