@@ -46,6 +46,29 @@ def test_a_ball_past_the_border_is_flagged_as_truncated_near_the_border_only():
     assert len(warned) == 1 and "cut by a mesh border" in str(warned[0].message)
 
 
+def test_samples_lost_across_seams_are_flagged_where_the_ball_loses_surface_with_them():
+    # No seam may be crossed: the balls by the torus's own seams lose a part of the surface.
+    torus = uvfeat.shapes.torus(2.0, 0.5, 64, 32)
+    cut = uvfeat.Atlas(torus, 256).compute("mean_curvature", 0.3, max_jumps=0, **OPTIONS)["mean_curvature"]
+    lost = lost_share(cut) > 0.05
+    assert np.nanmedian(cut.area_ratio[lost]) < 0.9
+    assert cut.vertex_flags()["partly_missing"].mean() > 0.1
+    # Round a lat-long pole the domain overlaps itself across the fan of slits: the points lost
+    # beyond the pole are surface the domain reaches round the side, and the balls hold pi r^2.
+    sphere = uvfeat.shapes.uv_sphere(1.0, 128, 64)
+    poles = uvfeat.Atlas(sphere, 256).compute("mean_curvature", "4%", compute_resolution=128,
+                                              samples=64)["mean_curvature"]
+    lost = lost_share(poles) > 0.05
+    assert lost.sum() > 1000
+    assert np.nanmedian(poles.area_ratio[lost]) == pytest.approx(1.0, abs=0.02)
+    assert poles.vertex_flags()["partly_missing"].mean() < 0.03
+
+
+def lost_share(feature):
+    drawn = feature.n_valid.astype(float) + feature.n_missing + feature.n_border
+    return feature.n_missing / np.maximum(drawn, 1)
+
+
 def test_a_scale_stack_flags_each_radius_and_summary_json_counts_them(tmp_path):
     torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
     stack, _ = compute(torus, [0.3, 2.0])
