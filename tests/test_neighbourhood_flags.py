@@ -61,7 +61,20 @@ def test_samples_lost_across_seams_are_flagged_where_the_ball_loses_surface_with
     lost = lost_share(poles) > 0.05
     assert lost.sum() > 1000
     assert np.nanmedian(poles.area_ratio[lost]) == pytest.approx(1.0, abs=0.02)
-    assert poles.vertex_flags()["partly_missing"].mean() < 0.03
+    # flagged by the lost share alone: 19 % of the vertices; left flagged: 3.4 %, whose balls hold
+    # under 0.95 or over 1.1 pi r^2 (mostly over: the domain counts the pole's surface twice there)
+    assert poles.vertex_flags()["partly_missing"].mean() < 0.06
+
+
+def test_lost_samples_count_unless_the_others_found_one_sheets_area():
+    from uvfeat.neighbourhood_flags import texel_flags
+    # 40 of 100 samples lost: short of the ball, one sheet, a thin part's second sheet making up
+    # for the loss, no sample at all, off the charts; and 3 of 100 lost
+    n_valid = np.array([60, 60, 60, 0, 0, 97])
+    n_missing = np.array([40, 40, 40, 100, 0, 3])
+    area_ratio = np.array([0.62, 1.0, 1.25, 0.0, np.nan, 0.97])
+    flags = texel_flags(n_valid, n_missing, np.zeros(6, dtype=int), area_ratio)
+    assert flags["partly_missing"].tolist() == [True, False, True, True, False, False]
 
 
 def lost_share(feature):

@@ -4,12 +4,12 @@ plain-language notes about them (issue 15):
 - **truncated**: the ball reaches past a mesh border, so part of the neighbourhood is missing
   from the surface itself and the values are biased (normal near the border of an open mesh);
 - **partly missing**: more than :data:`MISSING_SHARE` of the samples could not be relocated
-  across seams (a broken atlas, or more seams than ``max_jumps``) and the surface the others
-  found falls short of ``pi r^2`` by more than that share. Lost samples whose surface the others
-  cover do not count: round the pole of a latitude-longitude chart the sampling domain overlaps
-  itself across the pole's fan of slits, and the points beyond the pole, lost there, are the
-  surface the domain reaches round the side (the clean 200K lat-long sphere at r = 2 %: 8 % of
-  the texels lose 46 % of their points, and their neighbourhoods hold 1.00 ``pi r^2``);
+  across seams (a broken atlas, or more seams than ``max_jumps``), unless the others found one
+  sheet's ``pi r^2`` (:data:`COVERED_RATIOS`), so that the lost samples' surface is covered.
+  That is the case round the pole of a latitude-longitude chart: the sampling domain overlaps
+  itself across the pole's fan of slits, and the points lost beyond the pole are surface the
+  domain reaches round the side (the clean 200K lat-long sphere at r = 2 %: 8 % of the texels
+  lose 46 % of their points, and most of their neighbourhoods hold 1.00 ``pi r^2``);
 - **several sheets**: the neighbourhood's area exceeds ``SEVERAL_SHEETS`` times ``pi r^2``, so
   the ball holds more than one sheet of the surface (both sides of a part thinner than the
   radius): the values mix the sheets. One smooth sheet holds about ``pi r^2`` at any curvature.
@@ -26,6 +26,11 @@ from . import _core
 #: Share of missing samples above which a neighbourhood counts as partly missing.
 MISSING_SHARE = 0.05
 
+#: Area ratios of a neighbourhood whose lost samples are surface its other samples cover: one
+#: sheet's ``pi r^2`` within the share lost and the overlap of seam routes (up to about 1.1).
+#: Outside it the loss counts: short of the ball, or a second sheet making up for it.
+COVERED_RATIOS = (1.0 - MISSING_SHARE, 1.1)
+
 #: Flag names, in report order.
 FLAGS = ("truncated", "partly_missing", "several_sheets")
 
@@ -36,8 +41,9 @@ def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray
     drawn = n_valid.astype(np.int64) + n_missing + n_border
     with np.errstate(invalid="ignore"):
         return {"truncated": n_border > 0,
+                # NaN ratios (no samples, or off the charts) are not covered.
                 "partly_missing": (n_missing > MISSING_SHARE * np.maximum(drawn, 1))
-                & ~(area_ratio >= 1.0 - MISSING_SHARE),
+                & ~((area_ratio >= COVERED_RATIOS[0]) & (area_ratio <= COVERED_RATIOS[1])),
                 "several_sheets": area_ratio > _core.SEVERAL_SHEETS}
 
 

@@ -44,8 +44,9 @@ pub fn texel_uv(t: usize, w: usize) -> DVec2 {
 
 /// Groups of one chart a tile is split into at most (each reaches its texels from its centre).
 /// With 16, the 18-chart xatlas torus at r = 16 % left 414 texels (arms of a chart in its 64-texel
-/// tiles, often one texel each) to the per-texel path at 0.8 ms each, a fifth of its features: a
-/// group of one texel costs less there, and small radii never reach this many.
+/// tiles, often one texel each; most were probably gutter texels, which have joined their groups
+/// since) to the per-texel path at 0.8 ms each, a fifth of its features: a group of one texel
+/// costs less there, and small radii never reach this many.
 const MAX_GROUPS: usize = 64;
 
 /// Evaluates the texels `texels` (indices into the `w`² computation texture) of one tile.
@@ -106,7 +107,7 @@ struct Group {
 /// lat-long pole's fan triangles), along the texture's axes round them. Round any other gap (a
 /// concavity whose edges are seams to other charts, on Spot) a member would sum a lattice that
 /// the centre unfolds beyond the member's own boundary from the wrong side (the baked seams'
-/// error, `test_bake`, 1.5 -> 3.3 % of the range); at the poles the groups of a tile row of the
+/// error, `test_bake` at its former 128² texture and one seed, 1.5 -> 3.3 % of the range); at the poles the groups of a tile row of the
 /// 200K sphere at r = 4 % fall from 14-16 per tile to 6-7.
 fn reaches(atlas: &Atlas, centre: &Centre, member: &TexelPoint, max_jumps: u32) -> bool {
     let within = |from: &Home, target: DVec2| match walk(atlas, from, target, max_jumps) {
@@ -120,8 +121,9 @@ fn reaches(atlas: &Atlas, centre: &Centre, member: &TexelPoint, max_jumps: u32) 
     }
     // A texel centre in a slit or in the gutter has its home on an edge of its face, where a walk
     // may end on either side of the edge: the walks aim a hair inside the face. Aimed at the edge,
-    // most gutter texels were left unreached, each then a group of its own with its own lattice
-    // and probes: on the xatlas torus at r = 16 %, 1,390 groups of one texel out of 1,640.
+    // the rounding left about half the gutter texels unreached, each then a group of its own with
+    // its own lattice and probes: on the xatlas torus at r = 16 %, 1,390 groups of one texel out of
+    // 1,640. (A home face of no parametric area keeps the old aim: its centroid lies on the edge.)
     let corners = atlas.topology.corner_uvs(member.home.face as usize);
     let inside = (corners[0] + corners[1] + corners[2]) / 3.0;
     let target = member.home.point + 1e-3 * (inside - member.home.point);
@@ -253,8 +255,8 @@ const SECANT_BALL: f64 = 32.0;
 
 /// Area element of the centre's face over the secant metric's above which the face is taken to be
 /// tilted by noise. Smooth meshes keep their faces' metric: with the chords everywhere, the coarse
-/// Spot's maps moved enough across its seams to fail the texture-baking test (`test_bake`: max
-/// seam error 1.4 -> 7.7 % of the range).
+/// Spot's maps moved enough across its seams to fail the texture-baking test (`test_bake` at its
+/// former 128² texture and one seed: max seam error 1.4 -> 7.7 % of the range).
 const ROUGH_FACE: f64 = 1.1;
 
 /// The metric of the plane of the group around `centre`: the surface's at the scale of the ball
