@@ -35,6 +35,21 @@ def test_a_ball_wider_than_a_tube_is_flagged_as_holding_several_sheets():
     assert len(warned) == 1 and "more than one sheet" in str(warned[0].message)
 
 
+def test_a_rough_sheet_is_one_sheet():
+    # normal noise of half the mean edge: the tilted facets hold 1.7 pi r^2 in a ball over one sheet
+    torus = uvfeat.shapes.torus(2.0, 0.5, 96, 48)
+    normals = trimesh.Trimesh(torus.positions, torus.faces, process=False).vertex_normals
+    edge = np.linalg.norm(torus.positions[torus.faces[:, 0]] - torus.positions[torus.faces[:, 1]], axis=1).mean()
+    noise = np.random.default_rng(0).normal(0.0, 0.5 * edge, len(normals))[:, None] * normals
+    rough = uvfeat.Mesh(torus.positions + noise, torus.faces, uvs=torus.uvs, uv_faces=torus.uv_faces)
+    narrow, _ = compute(rough, 0.3)
+    assert np.nanmedian(narrow.area_ratio) > 1.6
+    assert np.nanmedian(narrow.sheet_area) == pytest.approx(1.5, abs=0.2)
+    assert narrow.vertex_flags()["several_sheets"].mean() < 0.05
+    wide, _ = compute(rough, 2.0)
+    assert wide.vertex_flags()["several_sheets"].mean() > 0.9
+
+
 def test_a_ball_past_the_border_is_flagged_as_truncated_near_the_border_only():
     plane = uvfeat.shapes.plane(1.0, 32)
     feature, warned = compute(plane, 0.1)

@@ -32,9 +32,10 @@ class FeatureMap:
     ``principal_directions`` (``(W_c, W_c, 2, 3)``: unit ``d1`` of ``k1`` and ``d2`` of ``k2``, a
     line field whose sign is arbitrary) and ``fit_residual`` (``(W_c, W_c)``, RMS distance to the
     fit relative to r) are set (a leading ``n_radii`` axis for a stack); None otherwise.
-    ``area_ratio`` is each neighbourhood's surface area over ``pi r^2`` (about 1 for one sheet, 2
-    for both sides of a thin part); :meth:`vertex_flags` says which vertices have neighbourhoods
-    that are truncated, partly missing or hold several sheets.
+    ``area_ratio`` is each neighbourhood's surface area over ``pi r^2`` (about 1 for one smooth
+    sheet, 2 for both sides of a thin part) and ``sheet_area`` the area one sheet holds there (1 on
+    a smooth mesh, more where rough facets tilt about the surface); :meth:`vertex_flags` says which
+    vertices have neighbourhoods that are truncated, partly missing or hold several sheets.
     """
 
     name: str
@@ -47,6 +48,7 @@ class FeatureMap:
     principal_directions: np.ndarray | None = None
     fit_residual: np.ndarray | None = None
     area_ratio: np.ndarray | None = None
+    sheet_area: np.ndarray | None = None
     summary: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
     _atlas: object = field(default=None, repr=False)
@@ -100,7 +102,8 @@ class FeatureMap:
         "several_sheets"}`` -> ``(n_vertices,)`` bool (``(n_radii, n_vertices)`` for a stack)."""
         if "flags" not in self._cache:  # shared by the features of one computation
             self._cache["flags"] = [vertex_flags(self._atlas.mesh, texel_flags(m.n_valid, m.n_missing, m.n_border,
-                                                                               m.area_ratio)) for m in self._maps]
+                                                                               m.area_ratio, m.sheet_area))
+                                    for m in self._maps]
         per_radius = self._cache["flags"]
         return per_radius[0] if not self.is_stack else {n: np.stack([f[n] for f in per_radius]) for n in FLAGS}
 
@@ -184,6 +187,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
             principal_directions=None if opts["method"] != "fit" else gather(lambda m: m.principal_directions),
             fit_residual=None if opts["method"] != "fit" else gather(lambda m: m.fit_residual),
             area_ratio=gather(lambda m: m.area_ratio),
+            sheet_area=gather(lambda m: m.sheet_area),
             summary=all_maps[0].summary if not stack else [m.summary for m in all_maps],
             settings=described,
             _atlas=atlas,

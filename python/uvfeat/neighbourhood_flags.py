@@ -10,9 +10,14 @@ plain-language notes about them (issue 15):
   itself across the pole's fan of slits, and the points lost beyond the pole are surface the
   domain reaches round the side (the clean 200K lat-long sphere at r = 2 %: 8 % of the texels
   lose 46 % of their points, and most of their neighbourhoods hold 1.00 ``pi r^2``);
-- **several sheets**: the neighbourhood's area exceeds ``SEVERAL_SHEETS`` times ``pi r^2``, so
+- **several sheets**: the neighbourhood's area exceeds ``SEVERAL_SHEETS`` times one sheet's, so
   the ball holds more than one sheet of the surface (both sides of a part thinner than the
-  radius): the values mix the sheets. One smooth sheet holds about ``pi r^2`` at any curvature.
+  radius): the values mix the sheets. One smooth sheet holds about ``pi r^2`` at any curvature,
+  one rough sheet more: its facets tilt about the surface (``FeatureMap.sheet_area``, the mean
+  roughness of the faces round the texel: 1.3-4 on the noisy lat-long sphere of docs/PEERS.md,
+  1 on smooth meshes).
+
+Area ratios are read in units of one sheet's area: ``area_ratio / sheet_area``.
 
 A vertex is flagged when the texel under one of its corners is.
 """
@@ -26,8 +31,8 @@ from . import _core
 #: Share of missing samples above which a neighbourhood counts as partly missing.
 MISSING_SHARE = 0.05
 
-#: Area ratios of a neighbourhood whose lost samples are surface its other samples cover: one
-#: sheet's ``pi r^2`` within the share lost and the overlap of seam routes (up to about 1.1).
+#: Area ratios (in units of one sheet's area) of a neighbourhood whose lost samples are surface its
+#: other samples cover: one sheet within the share lost and the overlap of seam routes (up to 1.1).
 #: Outside it the loss counts: short of the ball, or a second sheet making up for it.
 COVERED_RATIOS = (1.0 - MISSING_SHARE, 1.1)
 
@@ -36,15 +41,17 @@ FLAGS = ("truncated", "partly_missing", "several_sheets")
 
 
 def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray,
-                area_ratio: np.ndarray) -> dict[str, np.ndarray]:
-    """Boolean maps of the three flags over the computation texture."""
+                area_ratio: np.ndarray, sheet_area: np.ndarray | float = 1.0) -> dict[str, np.ndarray]:
+    """Boolean maps of the three flags over the computation texture; ``sheet_area`` is the area
+    one sheet of the surface holds in each texel's ball, over ``pi r^2``."""
     drawn = n_valid.astype(np.int64) + n_missing + n_border
+    sheets = area_ratio / sheet_area
     with np.errstate(invalid="ignore"):
         return {"truncated": n_border > 0,
                 # NaN ratios (no samples, or off the charts) are not covered.
                 "partly_missing": (n_missing > MISSING_SHARE * np.maximum(drawn, 1))
-                & ~((area_ratio >= COVERED_RATIOS[0]) & (area_ratio <= COVERED_RATIOS[1])),
-                "several_sheets": area_ratio > _core.SEVERAL_SHEETS}
+                & ~((sheets >= COVERED_RATIOS[0]) & (sheets <= COVERED_RATIOS[1])),
+                "several_sheets": sheets > _core.SEVERAL_SHEETS}
 
 
 def vertex_flags(mesh, flags: dict[str, np.ndarray]) -> dict[str, np.ndarray]:

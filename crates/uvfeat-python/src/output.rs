@@ -92,6 +92,13 @@ impl PyFeatureMaps {
         self.map(py, self.inner.area_ratio.clone())
     }
 
+    /// (W_c, W_c) the area one sheet of the surface holds in each texel's ball, over pi r^2 (1 on
+    /// a smooth mesh, more on a rough one; NaN off the charts): the unit of the several-sheets flag.
+    #[getter]
+    fn sheet_area<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        self.map(py, self.inner.sheet_area.clone())
+    }
+
     /// (n_vertices, 2, 3) principal directions of the fit, evaluated at every vertex.
     fn per_vertex_directions<'py>(&self, py: Python<'py>, atlas: &PyAtlas) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
         let (settings, core) = (&self.settings, atlas.core());

@@ -1,6 +1,7 @@
 //! Feature maps over the computation texture (DESIGN.md §1.9): every texel centre of a `W_c x W_c`
 //! grid is a point `s` where all requested features are evaluated, in parallel over tiles.
 
+use super::sheet_area::sheet_area;
 use crate::atlas::Atlas;
 use crate::error::Result;
 use crate::evaluation::{evaluate_point, prepare, Patterns, PixelResult};
@@ -63,8 +64,9 @@ fn ball_texels(atlas: &Atlas, settings: &ComputeSettings) -> f64 {
     settings.radius / (surface / parametric).sqrt() * settings.resolution as f64
 }
 
-/// Neighbourhood area ratio above which a neighbourhood holds more than one sheet: one smooth sheet
-/// gives about 1 at any curvature, two sheets about 2, overlapping seam routes up to about 1.1.
+/// Neighbourhood area ratio, in units of one sheet's area (see `output/sheet_area.rs`), above
+/// which a neighbourhood holds more than one sheet: one sheet gives about 1 at any curvature, two
+/// sheets about 2, overlapping seam routes up to about 1.1.
 pub const SEVERAL_SHEETS: f32 = 1.5;
 
 /// Totals over a map, for reports.
@@ -81,7 +83,7 @@ pub struct MapSummary {
     /// Texels whose neighbourhood was cut by a mesh border (some samples dropped there).
     pub truncated_texels: usize,
     /// Texels whose neighbourhood holds more than one sheet of the surface (area ratio above
-    /// [`SEVERAL_SHEETS`]): the ball is wider than a thin part there.
+    /// [`SEVERAL_SHEETS`] times one sheet's): the ball is wider than a thin part there.
     pub several_sheet_texels: usize,
     /// Mean accepted samples per texel.
     pub mean_valid: f64,
@@ -116,6 +118,9 @@ pub struct FeatureMaps {
     pub fit_residual: Option<Vec<f32>>,
     /// Neighbourhood area over `pi r^2` per texel (see [`PixelResult::area_ratio`]).
     pub area_ratio: Vec<f32>,
+    /// The area one sheet of the surface holds in each texel's ball, over `pi r^2` (1 for a smooth
+    /// mesh, more for a rough one; NaN off the charts): the unit of the several-sheets flag.
+    pub sheet_area: Vec<f32>,
     /// Totals.
     pub summary: MapSummary,
 }
@@ -156,12 +161,17 @@ impl FeatureMaps {
                 pixels[t] = result;
             }
         }
-        let chart = (0..w * w).into_par_iter().map(|t| atlas.chart_at(texel_uv(t, w))).collect();
+        let chart: Vec<i32> = (0..w * w).into_par_iter().map(|t| atlas.chart_at(texel_uv(t, w))).collect();
         // One pass over the results, band by band: a pass per column read the 120-byte results
         // again each time (50 ms of a 200K-face torus's 0.35 s).
-        let bands: Vec<Columns> = pixels.par_chunks(w * TILE).map(|band| Columns::of(band, settings)).collect();
+        let sheet_area = sheet_area(atlas, &chart, w, ball.round().max(1.0) as usize);
+        let bands: Vec<Columns> = pixels
+            .par_chunks(w * TILE)
+            .zip(sheet_area.par_chunks(w * TILE))
+            .map(|(band, sheets)| Columns::of(band, sheets, settings))
+            .collect();
         let columns = bands.into_iter().fold(Columns::new(settings), Columns::append);
-        Ok(columns.into_maps(chart, settings))
+        Ok(columns.into_maps(chart, sheet_area, settings))
     }
 }
 
@@ -210,9 +220,10 @@ impl Columns {
         }
     }
 
-    fn of(pixels: &[&PixelResult], settings: &ComputeSettings) -> Self {
+    /// The columns of `pixels`, whose balls hold `sheet_area` for one sheet.
+    fn of(pixels: &[&PixelResult], sheet_area: &[f32], settings: &ComputeSettings) -> Self {
         let mut columns = Self::new(settings);
-        for p in pixels {
+        for (p, &sheet) in pixels.iter().zip(sheet_area) {
             for (column, feature) in columns.values.iter_mut().zip(&settings.features) {
                 column.push(p.values[feature.index()]);
             }
@@ -234,7 +245,7 @@ impl Columns {
                 totals.missing += u64::from(p.counts.missing);
                 totals.drawn += u64::from(p.counts.valid + p.counts.missing + p.counts.border);
                 totals.truncated += usize::from(p.counts.border > 0);
-                totals.several_sheets += usize::from(p.area_ratio > SEVERAL_SHEETS);
+                totals.several_sheets += usize::from(p.area_ratio > SEVERAL_SHEETS * sheet);
                 totals.valid += u64::from(p.counts.valid);
             }
         }
@@ -270,7 +281,7 @@ impl Columns {
         self
     }
 
-    fn into_maps(self, chart: Vec<i32>, settings: &ComputeSettings) -> FeatureMaps {
+    fn into_maps(self, chart: Vec<i32>, sheet_area: Vec<f32>, settings: &ComputeSettings) -> FeatureMaps {
         let totals = &self.totals;
         let n = totals.evaluated.max(1) as f64;
         let summary = MapSummary {
@@ -295,6 +306,7 @@ impl Columns {
             directions: self.directions,
             fit_residual: self.fit_residual,
             area_ratio: self.area_ratio,
+            sheet_area,
             summary,
         }
     }

@@ -8,6 +8,7 @@ mod neighbourhood_tiles;
 mod per_vertex;
 mod screen;
 mod shaded_view;
+mod sheet_area;
 
 pub use feature_map::{FeatureMaps, MapSummary, SEVERAL_SHEETS};
 pub use front_side::front_side;
