@@ -9,31 +9,7 @@ use rayon::prelude::*;
 
 /// Cap on a face's roughness: a face nearly edge-on to its vertex normals (a fold) would otherwise
 /// outweigh every face around it in a ball's mean.
-const MAX_FACE_ROUGHNESS: f32 = 10.0;
-
-/// Each face's area over its area projected on the mean of its corners' vertex normals: how much
-/// more area a rough surface holds than the smooth surface it scatters about. The facets of a
-/// noisy scan tilt about its surface and the vertex normals average the tilts out, so a ball over
-/// one rough sheet holds about the mean of this over the ball times `pi r^2` (the noisy 200K
-/// lat-long sphere of docs/PEERS.md: 1.3 at the equator, more towards the poles, whose thin faces
-/// the same noise tilts further). 1 for a face without area or smoothed normal.
-fn face_roughness(topology: &Topology, positions: &[DVec3], normals: &[DVec3]) -> Vec<f32> {
-    topology
-        .faces
-        .par_iter()
-        .map(|corners| {
-            let [a, b, c] = corners.map(|v| positions[v as usize]);
-            let twice_area = (b - a).cross(c - a);
-            let smooth = corners.iter().map(|&v| normals[v as usize]).sum::<DVec3>().normalize_or_zero();
-            let projected = twice_area.dot(smooth).abs();
-            if projected > 0.0 {
-                ((twice_area.length() / projected) as f32).min(MAX_FACE_ROUGHNESS)
-            } else {
-                1.0
-            }
-        })
-        .collect()
-}
+const MAX_FACE_ROUGHNESS: f64 = 10.0;
 
 /// A face's affine parameterisation for the frame: `P(uv) = x0 + J (uv - uv0)` and the
 /// (unnormalised) interpolated normal `N(uv) = n0 + J_N (uv - uv0)`. Barycentric interpolation is
@@ -61,6 +37,23 @@ pub struct FaceMap {
 }
 
 impl FaceMap {
+    /// The face's area over its area projected on the mean of its corners' vertex normals: how
+    /// much more area a rough surface holds than the smooth surface it scatters about. The facets
+    /// of a noisy scan tilt about its surface and the vertex normals average the tilts out, so a
+    /// ball over one rough sheet holds about the mean of this over the ball times `pi r^2` (the
+    /// noisy 200K lat-long sphere of docs/PEERS.md: 1.2 at the equator, up to 2.5 beside the poles,
+    /// whose thin faces the same noise tilts further). 1 for a face without area.
+    pub fn roughness(&self) -> f64 {
+        let [(a, na), (b, nb), (c, nc)] = self.corners;
+        let twice_area = (b - a).cross(c - a);
+        let projected = twice_area.dot((na + nb + nc).normalize_or_zero()).abs();
+        if projected > 0.0 {
+            (twice_area.length() / projected).min(MAX_FACE_ROUGHNESS)
+        } else {
+            1.0
+        }
+    }
+
     #[inline]
     fn new(x: [DVec3; 3], n: [DVec3; 3], uv: [DVec2; 3]) -> Option<Self> {
         let inv = DMat2::from_cols(uv[1] - uv[0], uv[2] - uv[0]);
@@ -149,9 +142,6 @@ pub struct Frame {
     pub corner_metrics: Vec<[f64; 3]>,
     /// (n_sides) transition map of each boundary side; `None` where nothing is across.
     pub seam_maps: Vec<Option<SeamMap>>,
-    /// (n_faces) each face's area over its area projected on its smoothed normal (see
-    /// [`face_roughness`]): 1 on a smooth mesh.
-    pub face_roughness: Vec<f32>,
 }
 
 impl Frame {
@@ -167,7 +157,6 @@ impl Frame {
             distortion: vec![ZERO_DISTORTION; n_faces],
             corner_metrics: Vec::new(),
             seam_maps: Vec::new(),
-            face_roughness: Vec::new(),
         };
         frame.refresh(topology, input_positions)?;
         Ok(frame)
@@ -182,7 +171,6 @@ impl Frame {
     pub fn refresh(&mut self, topology: &Topology, input_positions: &[DVec3]) -> Result<()> {
         self.positions = topology.geometric_positions(input_positions)?;
         self.normals = vertex_normals(&self.positions, &topology.faces);
-        self.face_roughness = face_roughness(topology, &self.positions, &self.normals);
         let face_metrics: Vec<Option<[f64; 3]>> = (0..topology.faces.len())
             .into_par_iter()
             .map(|face| self.face_map(topology, face as u32).map(|map| map.jacobian.metric()))

@@ -1,7 +1,7 @@
 //! The area one sheet of the surface holds in a ball, texel by texel, in units of `pi r^2`: the
 //! unit in which the several-sheets flag reads a neighbourhood's area ratio. One smooth sheet
 //! holds `pi r^2` at any curvature; one rough sheet about its facets' mean roughness times that
-//! ([`crate::frame::Frame::face_roughness`]). Read in `pi r^2` alone, half the texels of the noisy
+//! ([`crate::frame::FaceMap::roughness`]). Read in `pi r^2` alone, half the texels of the noisy
 //! 200K lat-long sphere of docs/PEERS.md and all of the noisy torus's held "several sheets" at
 //! r = 2 %.
 
@@ -12,11 +12,13 @@ use rayon::prelude::*;
 /// Per texel of the `w`² computation texture on a chart (`chart[t] >= 0`), the mean roughness of
 /// the faces under the texels within about `radius` texels of it (a square window, which may take
 /// in a neighbouring chart's texels); NaN off the charts. The faces are read every `radius / 2`
-/// texels, 25 or more a window: the mean changes at the ball's scale, and reading the face of
-/// every texel (random loads from the coverage) cost 2 % of a 200K sphere's features.
+/// texels (25 or more a window) and at most 128 times along a side: the mean changes at the
+/// ball's scale, and reading the face of every texel (random loads from the coverage) cost 2 % of
+/// a 200K sphere's features. The roughness is computed here, for the faces read, and not per
+/// frame: every face's was 8 % of a 200K-face `Atlas.update`.
 pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<f32> {
     let coverage = &atlas.coverage;
-    let stride = (radius / 2).max(1);
+    let stride = (radius / 2).max(w / 128).max(1);
     let (cells, reach) = (w.div_ceil(stride), radius.div_ceil(stride));
     let roughness: Vec<f64> = (0..cells * cells)
         .into_par_iter()
@@ -24,8 +26,8 @@ pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<
             let at = |k: usize| (k * stride + stride / 2).min(w - 1);
             let uv = texel_uv(at(c / cells) * w + at(c % cells), w);
             let face = atlas.texel_coordinates(uv).map(|(i, j)| coverage.face[j * coverage.resolution + i]);
-            face.and_then(|face| usize::try_from(face).ok())
-                .map_or(f64::NAN, |face| f64::from(atlas.frame.face_roughness[face]))
+            let map = face.and_then(|face| u32::try_from(face).ok()).map(|face| atlas.frame.face_map(&atlas.topology, face));
+            map.map_or(f64::NAN, |map| map.map_or(1.0, |map| map.roughness()))
         })
         .collect();
     let sums = summed_area(&roughness, cells, |x| if x.is_nan() { 0.0 } else { x });
