@@ -28,7 +28,11 @@ fn main() {
         .filter(|(w, ..)| w.x.abs().max(w.y.abs()) < 2.3)
         .collect();
     let lattice = TileLattice::from_points(&points, 1.25, spacing, false);
-    let settings = StatsSettings { radius: f64::from(scale), rho_min: 0.1 * f64::from(scale), volume_weighting: Default::default() };
+    let settings = StatsSettings {
+        radius: f64::from(scale),
+        rho_min: 0.1 * f64::from(scale),
+        volume_weighting: Default::default(),
+    };
     let texels: Vec<LatticeTexel> = (0..256)
         .map(|k| {
             let place = (Vec2::new((k % 16) as f32, (k / 16) as f32) - Vec2::splat(7.5)) * 0.06;
@@ -37,7 +41,12 @@ fn main() {
         })
         .collect();
     let read: usize = texels.iter().map(|texel| lattice.run(texel, 1.05 * scale).len()).sum();
-    println!("{} lattice points, {:.0} read a texel (256 texels), detected: {:?}", lattice.len(), read as f64 / 256.0, SumsKernel::detected());
+    println!(
+        "{} lattice points, {:.0} read a texel (256 texels), detected: {:?}",
+        lattice.len(),
+        read as f64 / 256.0,
+        SumsKernel::detected()
+    );
     let mut portable = None;
     for kernel in [SumsKernel::Portable, SumsKernel::Avx2, SumsKernel::Avx512] {
         if !kernel.available() {
@@ -55,7 +64,11 @@ fn main() {
             best = best.min(started.elapsed().as_secs_f64() / (20.0 * 256.0));
         }
         let ratio = portable.map_or(String::new(), |p: f64| format!(", {:.2}x the portable copy's time", best / p));
-        println!("{kernel:?}: {:.0} ns a texel, {:.2} ns a point read{ratio}", 1e9 * best, 1e9 * best * 256.0 / read as f64);
+        println!(
+            "{kernel:?}: {:.0} ns a texel, {:.2} ns a point read{ratio}",
+            1e9 * best,
+            1e9 * best * 256.0 / read as f64
+        );
         portable.get_or_insert(best);
     }
 }

@@ -26,7 +26,8 @@ pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<
             let at = |k: usize| (k * stride + stride / 2).min(w - 1);
             let uv = texel_uv(at(c / cells) * w + at(c % cells), w);
             let face = atlas.texel_coordinates(uv).map(|(i, j)| coverage.face[j * coverage.resolution + i]);
-            let map = face.and_then(|face| u32::try_from(face).ok()).map(|face| atlas.frame.face_map(&atlas.topology, face));
+            let map =
+                face.and_then(|face| u32::try_from(face).ok()).map(|face| atlas.frame.face_map(&atlas.topology, face));
             map.map_or(f64::NAN, |map| map.map_or(1.0, |map| map.roughness()))
         })
         .collect();
@@ -40,7 +41,12 @@ pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<
         .into_par_iter()
         .map(|c| {
             let (i, j) = (c % cells, c / cells);
-            let bounds = (i.saturating_sub(reach), j.saturating_sub(reach), (i + reach + 1).min(cells), (j + reach + 1).min(cells));
+            let bounds = (
+                i.saturating_sub(reach),
+                j.saturating_sub(reach),
+                (i + reach + 1).min(cells),
+                (j + reach + 1).min(cells),
+            );
             let count = window(&counts, bounds);
             if count > 0.0 {
                 (window(&sums, bounds) / count) as f32
@@ -115,7 +121,8 @@ mod tests {
         let table = summed_area(&grid, w, |x| x);
         for (i0, j0, i1, j1) in [(0, 0, 5, 5), (1, 2, 4, 3), (3, 3, 4, 4)] {
             let direct: f64 = (j0..j1).flat_map(|j| (i0..i1).map(move |i| (i, j))).map(|(i, j)| grid[j * w + i]).sum();
-            let window = table[j1 * (w + 1) + i1] - table[j0 * (w + 1) + i1] - table[j1 * (w + 1) + i0] + table[j0 * (w + 1) + i0];
+            let window = table[j1 * (w + 1) + i1] - table[j0 * (w + 1) + i1] - table[j1 * (w + 1) + i0]
+                + table[j0 * (w + 1) + i0];
             assert_eq!(window, direct);
         }
     }

@@ -104,7 +104,8 @@ fn formulas(
     let mut farthest = 0.0f64;
     for k in 0..lattice.len() {
         let w = glam::DVec2::new(f64::from(lattice.w[0][k]), f64::from(lattice.w[1][k]));
-        let d = glam::DVec3::new(f64::from(lattice.q[0][k]), f64::from(lattice.q[1][k]), f64::from(lattice.q[2][k])) - p;
+        let d =
+            glam::DVec3::new(f64::from(lattice.q[0][k]), f64::from(lattice.q[1][k]), f64::from(lattice.q[2][k])) - p;
         let (dw2, rho) = ((w - texel.place.as_dvec2()).length_squared(), d.length());
         if dw2 >= f64::from(lattice.margin).powi(2) || rho <= 1e-6 * r {
             continue;
@@ -126,7 +127,11 @@ fn formulas(
         s.normal_curvature.wg += weight * curvature;
         s.normal_curvature.wg2 += weight * curvature * curvature;
         if with_normals {
-            let normal = glam::DVec3::new(f64::from(lattice.normal[0][k]), f64::from(lattice.normal[1][k]), f64::from(lattice.normal[2][k]));
+            let normal = glam::DVec3::new(
+                f64::from(lattice.normal[0][k]),
+                f64::from(lattice.normal[1][k]),
+                f64::from(lattice.normal[2][k]),
+            );
             s.bending.w += curved;
             s.bending.wg += curved * (n - normal).length_squared() / (rho * rho);
         }
@@ -146,9 +151,8 @@ fn the_farthest_point_decides_the_rim_beside_the_padding() {
     let settings = StatsSettings { radius: 0.1, rho_min: 0.01, volume_weighting: Default::default() };
     let texel = LatticeTexel { place: Vec2::ZERO, position: Vec3::ZERO, normal: Vec3::Z };
     for kernel in [SumsKernel::Portable, SumsKernel::Avx2, SumsKernel::Avx512].into_iter().filter(|k| k.available()) {
-        let rim_at = |distance: f32| {
-            lattice_statistics(kernel, &lattice, &texel, &settings, distance / 1.25, false, 0.0).rim
-        };
+        let rim_at =
+            |distance: f32| lattice_statistics(kernel, &lattice, &texel, &settings, distance / 1.25, false, 0.0).rim;
         assert!(rim_at(0.969) && !rim_at(0.971), "{kernel:?}");
     }
 }
