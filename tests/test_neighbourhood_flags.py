@@ -88,7 +88,7 @@ def test_lost_samples_count_unless_the_others_found_one_sheets_area():
     n_valid = np.array([60, 60, 60, 0, 0, 97])
     n_missing = np.array([40, 40, 40, 100, 0, 3])
     area_ratio = np.array([0.62, 1.0, 1.25, 0.0, np.nan, 0.97])
-    flags = texel_flags(n_valid, n_missing, np.zeros(6, dtype=int), area_ratio)
+    flags = texel_flags(n_valid, n_missing, np.zeros(6, dtype=int), area_ratio, np.ones(6))
     assert flags["partly_missing"].tolist() == [True, False, True, True, False, False]
 
 

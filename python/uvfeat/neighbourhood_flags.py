@@ -41,7 +41,7 @@ FLAGS = ("truncated", "partly_missing", "several_sheets")
 
 
 def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray,
-                area_ratio: np.ndarray, sheet_area: np.ndarray | float = 1.0) -> dict[str, np.ndarray]:
+                area_ratio: np.ndarray, sheet_area: np.ndarray) -> dict[str, np.ndarray]:
     """Boolean maps of the three flags over the computation texture; ``sheet_area`` is the area
     one sheet of the surface holds in each texel's ball, over ``pi r^2``."""
     drawn = n_valid.astype(np.int64) + n_missing + n_border

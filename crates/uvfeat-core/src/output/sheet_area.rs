@@ -17,7 +17,6 @@ use rayon::prelude::*;
 /// a 200K sphere's features. The roughness is computed here, for the faces read, and not per
 /// frame: every face's was 8 % of a 200K-face `Atlas.update`.
 pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<f32> {
-    let coverage = &atlas.coverage;
     let stride = (radius / 2).max(w / 128).max(1);
     let (cells, reach) = (w.div_ceil(stride), radius.div_ceil(stride));
     let roughness: Vec<f64> = (0..cells * cells)
@@ -25,18 +24,12 @@ pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<
         .map(|c| {
             let at = |k: usize| (k * stride + stride / 2).min(w - 1);
             let uv = texel_uv(at(c / cells) * w + at(c % cells), w);
-            let face = atlas.texel_coordinates(uv).map(|(i, j)| coverage.face[j * coverage.resolution + i]);
-            let map =
-                face.and_then(|face| u32::try_from(face).ok()).map(|face| atlas.frame.face_map(&atlas.topology, face));
-            map.map_or(f64::NAN, |map| map.map_or(1.0, |map| map.roughness()))
+            let face = atlas.texel_at(uv).and_then(|texel| u32::try_from(atlas.coverage.face[texel]).ok());
+            face.map_or(f64::NAN, |face| atlas.frame.face_map(&atlas.topology, face).map_or(1.0, |map| map.roughness()))
         })
         .collect();
     let sums = summed_area(&roughness, cells, |x| if x.is_nan() { 0.0 } else { x });
     let counts = summed_area(&roughness, cells, |x| if x.is_nan() { 0.0 } else { 1.0 });
-    let window = |table: &[f64], (i0, j0, i1, j1): (usize, usize, usize, usize)| {
-        table[j1 * (cells + 1) + i1] - table[j0 * (cells + 1) + i1] - table[j1 * (cells + 1) + i0]
-            + table[j0 * (cells + 1) + i0]
-    };
     let means: Vec<f32> = (0..cells * cells)
         .into_par_iter()
         .map(|c| {
@@ -47,9 +40,9 @@ pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<
                 (i + reach + 1).min(cells),
                 (j + reach + 1).min(cells),
             );
-            let count = window(&counts, bounds);
+            let count = window_sum(&counts, cells, bounds);
             if count > 0.0 {
-                (window(&sums, bounds) / count) as f32
+                (window_sum(&sums, cells, bounds) / count) as f32
             } else {
                 1.0
             }
@@ -75,9 +68,15 @@ fn summed_area(grid: &[f64], w: usize, value: impl Fn(f64) -> f64) -> Vec<f64> {
     table
 }
 
+/// The sum over columns `i0..i1` and rows `j0..j1` of the grid whose `(w + 1)`² summed-area
+/// table is `table`.
+fn window_sum(table: &[f64], w: usize, (i0, j0, i1, j1): (usize, usize, usize, usize)) -> f64 {
+    table[j1 * (w + 1) + i1] - table[j0 * (w + 1) + i1] - table[j1 * (w + 1) + i0] + table[j0 * (w + 1) + i0]
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{sheet_area, summed_area};
+    use super::{sheet_area, summed_area, window_sum};
     use crate::mesh::{Topology, TriangleMesh};
     use crate::shapes::uv_sphere;
     use crate::tile_evaluation::texel_uv;
@@ -121,9 +120,7 @@ mod tests {
         let table = summed_area(&grid, w, |x| x);
         for (i0, j0, i1, j1) in [(0, 0, 5, 5), (1, 2, 4, 3), (3, 3, 4, 4)] {
             let direct: f64 = (j0..j1).flat_map(|j| (i0..i1).map(move |i| (i, j))).map(|(i, j)| grid[j * w + i]).sum();
-            let window = table[j1 * (w + 1) + i1] - table[j0 * (w + 1) + i1] - table[j1 * (w + 1) + i0]
-                + table[j0 * (w + 1) + i0];
-            assert_eq!(window, direct);
+            assert_eq!(window_sum(&table, w, (i0, j0, i1, j1)), direct);
         }
     }
 }
