@@ -179,11 +179,12 @@ impl<const L: usize> Lanes<L> {
         }
     }
 
+    /// Not inlined into the pass: with this inlined, the pass's loop took 1.5x its time.
     fn totals(&self) -> Totals {
-        let total = |column: &[f32; L]| column.iter().map(|&x| f64::from(x)).sum::<f64>();
+        let total = |column: &[f32; L]| pairwise_total(column.map(f64::from));
         Totals {
             valid: total(&self.valid),
-            farthest: self.farthest.iter().copied().fold(0.0, f32::max),
+            farthest: self.farthest.iter().copied().fold(0.0, greater),
             area: total(&self.area),
             elevation_w: total(&self.elevation_w),
             elevation_wg: total(&self.elevation_wg),
@@ -195,6 +196,22 @@ impl<const L: usize> Lanes<L> {
             bending_wg: total(&self.bending_wg),
         }
     }
+}
+
+/// The sum of `L` (a power of two) values, pairwise: the upper half added to the lower one lane by
+/// lane, down to one, where a running sum is `L` dependent additions per column, eleven columns
+/// per texel (with the farthest lane's fold, `totals` went from 3.1 to 2.5 % of the features' CPU
+/// on the 200K lat-long sphere at r = 4 %).
+#[inline(always)]
+fn pairwise_total<const L: usize>(mut values: [f64; L]) -> f64 {
+    let mut half = L / 2;
+    while half > 0 {
+        for l in 0..half {
+            values[l] += values[l + half];
+        }
+        half /= 2;
+    }
+    values[0]
 }
 
 /// `a` if it is greater than `b`, else `b`: one `maxps` (`f32::max` adds a NaN test, and no
