@@ -173,6 +173,12 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
         arrays = [get(m) for m in all_maps]
         return np.stack(arrays) if stack else arrays[0]
 
+    # The neighbourhoods' maps are the same for every feature: one read-only copy serves them all.
+    shared = {name: _readonly(gather(lambda m, name=name: getattr(m, name)))
+              for name in ("n_valid", "n_missing", "n_border", "area_ratio", "sheet_area")}
+    if opts["method"] == "fit":
+        shared.update({name: _readonly(gather(lambda m, name=name: getattr(m, name)))
+                       for name in ("principal_directions", "fit_residual")})
     out, cache = {}, {}
     for k, name in enumerate(names):
         errors = [m.standard_errors(k) for m in all_maps]
@@ -180,14 +186,8 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
             name=name,
             radius=np.array(radii) if stack else radii[0],
             texture=gather(lambda m, k=k: m.values(k)),
-            n_valid=gather(lambda m: m.n_valid),
-            n_missing=gather(lambda m: m.n_missing),
-            n_border=gather(lambda m: m.n_border),
             standard_error=None if errors[0] is None else (np.stack(errors) if stack else errors[0]),
-            principal_directions=None if opts["method"] != "fit" else gather(lambda m: m.principal_directions),
-            fit_residual=None if opts["method"] != "fit" else gather(lambda m: m.fit_residual),
-            area_ratio=gather(lambda m: m.area_ratio),
-            sheet_area=gather(lambda m: m.sheet_area),
+            **shared,
             summary=all_maps[0].summary if not stack else [m.summary for m in all_maps],
             settings=described,
             _atlas=atlas,
@@ -197,6 +197,11 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
         )
     _warn_about_flagged_vertices(out[names[0]], radius if stack else [radius])
     return out
+
+
+def _readonly(array: np.ndarray) -> np.ndarray:
+    array.flags.writeable = False
+    return array
 
 
 def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:

@@ -58,11 +58,10 @@ impl Coverage {
     /// Rasterises the charts of `topology` into a `resolution`² grid.
     pub fn build(topology: &Topology, resolution: usize) -> Self {
         let n = resolution * resolution;
-        // Zeroed memory is mapped on first use: the bands fill the empty marks in parallel.
         let mut coverage = Self {
             resolution,
-            face: vec![0; n],
-            chart: vec![0; n],
+            face: filled(n, -1),
+            chart: filled(n, -1),
             border_side: filled(n, -1),
             chart_distance: Blocked::default(),
             interior_face: Blocked::default(),
@@ -128,8 +127,6 @@ impl Coverage {
             .zip(self.chart.par_chunks_mut(band_texels))
             .enumerate()
             .map(|(band, (face, chart))| {
-                face.fill(-1);
-                chart.fill(-1);
                 let offset = band * band_texels;
                 let rows = band * BAND_ROWS..(band + 1) * BAND_ROWS;
                 let (mut covered, mut overlapping, mut charts) = (0, 0, Vec::new());
@@ -215,11 +212,9 @@ impl Coverage {
 /// Rows of texels per band of the triangle rasterisation (64 bands at 1024²).
 const BAND_ROWS: usize = 16;
 
-/// `n` copies of `value`, written in parallel (the pages are mapped by the threads that write them).
+/// `n` copies of `value`, written in parallel (three buffers of 4 MB at 1024²: 5-7 ms in one thread).
 fn filled(n: usize, value: i32) -> Vec<i32> {
-    let mut values = vec![0; n];
-    values.par_chunks_mut(1 << 16).for_each(|chunk| chunk.fill(value));
-    values
+    rayon::iter::repeat_n(value, n).collect()
 }
 
 /// Chart distance from which a texel is interior (see [`Coverage::interior_face`]).
