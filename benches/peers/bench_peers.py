@@ -10,7 +10,8 @@ Surfaces: sphere, torus, ellipsoid at ~50K and ~200K faces, clean and with Gauss
 the normals (std 0.2 % of the diagonal). Radii: 1, 2, 4, 8 % of the clean diagonal. Error:
 mean |estimate - truth| divided by the truth's range (sphere: by its mean). Each method runs in its
 own process with a time limit; a method that hits it on a mesh is not run at larger radii there
-(recorded as a timeout too).
+(recorded as a timeout too). ``--repeats N`` runs the methods of each cell in turns N times and
+keeps the median times (on a shared machine one call's time may wander by 30-50 %).
 """
 
 from __future__ import annotations
@@ -59,6 +60,8 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--sizes", default="50K,200K")
     parser.add_argument("--radii", default="1,2,4,8", help="percent of the clean bounding-box diagonal")
     parser.add_argument("--timeout", type=float, default=600.0, help="seconds per method and mesh")
+    parser.add_argument("--repeats", type=int, default=1,
+                        help="timed runs per method and cell, in turns with the other methods; the median is kept")
     parser.add_argument("--memory-gb", type=float, default=8.0, help="address-space limit per method process")
     parser.add_argument("--results", default=str(ROOT / "docs/peers/results.json"))
     parser.add_argument("--markdown", default=str(ROOT / "docs/PEERS.md"))
@@ -102,23 +105,45 @@ def benchmark(args, runnable: list[str], results: list[dict], save) -> None:
                           f"mean edge {surface.spacing:.4f}", flush=True)
                     stopped = {}
                     for pct in radii:
-                        for key in runnable:
-                            if run_key(shape, size, noisy, pct, key) in done:
-                                continue
-                            row = {"shape": shape, "size": size, "noisy": noisy, "radius_pct": pct, "method": key,
-                                   "faces": len(surface.faces), "radius": pct / 100 * surface.diagonal}
-                            if key in stopped:
-                                row.update(status="timeout", seconds=None, detail=f"not run: timed out at {stopped[key]} %")
-                            else:
-                                row.update(measure(workers[key], surface, row["radius"], args.timeout))
-                                if row["status"] == "timeout":
-                                    stopped[key] = pct
-                            print(report.progress_line(row, METHODS[key].label), flush=True)
+                        keys = [key for key in runnable if run_key(shape, size, noisy, pct, key) not in done]
+                        for row in measure_cell(args, workers, keys, surface, shape, size, noisy, pct, stopped):
+                            print(report.progress_line(row, METHODS[row["method"]].label), flush=True)
                             results.append(row)
-                            save()
+                        save()
     finally:
         for worker in workers.values():
             worker.close()
+
+
+def measure_cell(args, workers: dict, keys: list[str], surface, shape: str, size: str, noisy: bool, pct: float,
+                 stopped: dict) -> list[dict]:
+    """The rows of one surface and radius. With ``--repeats N`` the methods run in turns N times, so
+    that a slow minute of a shared machine slows every method alike, and each row's times are the
+    medians (the values are those of the first run: every method here is deterministic)."""
+    rows = {}
+    for key in keys:
+        rows[key] = {"shape": shape, "size": size, "noisy": noisy, "radius_pct": pct, "method": key,
+                     "faces": len(surface.faces), "radius": pct / 100 * surface.diagonal}
+        if key in stopped:
+            rows[key].update(status="timeout", seconds=None, detail=f"not run: timed out at {stopped[key]} %")
+    runs = {key: [] for key in keys}
+    for repeat in range(args.repeats):
+        for key in keys:
+            if key in stopped or (repeat > 0 and rows[key]["status"] != "ok"):
+                continue
+            row = measure(workers[key], surface, rows[key]["radius"], args.timeout)
+            if repeat == 0:
+                rows[key].update(row)
+            if row["status"] == "timeout":
+                stopped[key] = pct
+            elif row["status"] == "ok":
+                runs[key].append((row["seconds"], row["cpu_seconds"]))
+    for key, times in runs.items():
+        if len(times) > 1:
+            rows[key].update(seconds=float(np.median([wall for wall, _ in times])),
+                             cpu_seconds=float(np.median([cpu for _, cpu in times])),
+                             seconds_runs=[wall for wall, _ in times])
+    return list(rows.values())
 
 
 def measure(worker: Worker, surface, radius: float, timeout: float) -> dict:
