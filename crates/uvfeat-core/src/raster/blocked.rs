@@ -22,18 +22,9 @@ impl<T: Copy> Blocked<T> {
     where
         T: Send + Sync,
     {
-        assert_eq!(rows.len(), resolution * resolution, "one value per texel");
-        Self::from_fn(resolution, fill, |t| rows[t])
-    }
-
-    /// The table of `value(j * resolution + i)` at texel `(i, j)`, padded with `fill` up to whole
-    /// blocks.
-    pub fn from_fn(resolution: usize, fill: T, value: impl Fn(usize) -> T + Sync) -> Self
-    where
-        T: Send + Sync,
-    {
         // Slot by slot in parallel: a scatter of the rows in one thread was 3-5 ms per table at
         // 1024².
+        assert_eq!(rows.len(), resolution * resolution, "one value per texel");
         let blocks_per_row = resolution.div_ceil(BLOCK);
         let values = (0..blocks_per_row * blocks_per_row * BLOCK * BLOCK)
             .into_par_iter()
@@ -42,7 +33,7 @@ impl<T: Copy> Blocked<T> {
                 let i = (block % blocks_per_row) * BLOCK + within % BLOCK;
                 let j = (block / blocks_per_row) * BLOCK + within / BLOCK;
                 if i < resolution && j < resolution {
-                    value(j * resolution + i)
+                    rows[j * resolution + i]
                 } else {
                     fill
                 }

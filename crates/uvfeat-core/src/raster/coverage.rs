@@ -4,8 +4,8 @@
 
 use super::blocked::Blocked;
 use super::boundary::{closest_on_segment, rasterise_edge, EdgeHit};
-use super::triangles::{rasterise_triangle, triangle_rows};
-use crate::mesh::{compressed_rows, uv_barycentric, Topology};
+use super::triangles::{rasterise_triangle, TriangleHit};
+use crate::mesh::{uv_barycentric, Topology};
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -60,9 +60,9 @@ impl Coverage {
         let n = resolution * resolution;
         let mut coverage = Self {
             resolution,
-            face: filled(n, -1),
-            chart: filled(n, -1),
-            border_side: filled(n, -1),
+            face: vec![-1; n],
+            chart: vec![-1; n],
+            border_side: vec![-1; n],
             chart_distance: Blocked::default(),
             interior_face: Blocked::default(),
             diagnostics: CoverageDiagnostics::default(),
@@ -71,10 +71,14 @@ impl Coverage {
         coverage.rasterise_boundaries(topology);
         let distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
         coverage.chart_distance = Blocked::from_rows(&distance, resolution, 0);
-        coverage.interior_face = Blocked::from_fn(resolution, u32::MAX, |t| {
-            let interior = distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
-            u32::try_from(coverage.face[t]).ok().filter(|_| interior).unwrap_or(u32::MAX)
-        });
+        let interior_face: Vec<u32> = (0..n)
+            .into_par_iter()
+            .map(|t| {
+                let interior = distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
+                u32::try_from(coverage.face[t]).ok().filter(|_| interior).unwrap_or(u32::MAX)
+            })
+            .collect();
+        coverage.interior_face = Blocked::from_rows(&interior_face, resolution, u32::MAX);
         coverage
     }
 
@@ -101,68 +105,31 @@ impl Coverage {
         DVec2::new(((t % self.resolution) as f64 + 0.5) / r, ((t / self.resolution) as f64 + 0.5) / r)
     }
 
-    /// Band by band of texel rows in parallel, each band's faces in face order, so that the first
-    /// face wins a texel two faces cover (overlapping UVs), as in one thread. The hits of all faces
-    /// gathered first and then written in one thread took 15 ms of the 200K-face sphere's 1024²
-    /// coverage (31 ms), and filling the empty buffers another 5.
     fn rasterise_triangles(&mut self, topology: &Topology) {
         let resolution = self.resolution;
-        let band_texels = BAND_ROWS * resolution;
-        let bands: Vec<Option<(u32, u32)>> = (0..topology.faces.len())
+        let hits: Vec<TriangleHit> = (0..topology.faces.len())
             .into_par_iter()
-            .map(|f| {
-                let rows = triangle_rows(topology.corner_uvs(f), resolution);
-                let first_and_last = ((rows.start / BAND_ROWS) as u32, (rows.end.saturating_sub(1) / BAND_ROWS) as u32);
-                (topology.face_chart[f] >= 0 && !rows.is_empty()).then_some(first_and_last)
+            .filter(|&f| topology.face_chart[f] >= 0)
+            .fold(Vec::new, |mut out, f| {
+                rasterise_triangle(f as u32, topology.corner_uvs(f), resolution, &mut out);
+                out
             })
+            .flatten_iter()
             .collect();
-        let in_bands = bands.iter().enumerate().filter_map(|(f, bands)| bands.map(|b| (f as u32, b)));
-        let (start, faces) = compressed_rows(
-            resolution.div_ceil(BAND_ROWS),
-            in_bands.flat_map(|(f, (first, last))| (first..=last).map(move |band| (band, f))),
-        );
-        let (covered, overlapping, charts) = self
-            .face
-            .par_chunks_mut(band_texels)
-            .zip(self.chart.par_chunks_mut(band_texels))
-            .enumerate()
-            .map(|(band, (face, chart))| {
-                let offset = band * band_texels;
-                let rows = band * BAND_ROWS..(band + 1) * BAND_ROWS;
-                let (mut covered, mut overlapping, mut charts) = (0, 0, Vec::new());
-                for &f in &faces[start[band] as usize..start[band + 1] as usize] {
-                    let face_chart = topology.face_chart[f as usize];
-                    let before = covered;
-                    rasterise_triangle(topology.corner_uvs(f as usize), resolution, rows.clone(), |t| {
-                        let t = t - offset;
-                        if face[t] >= 0 {
-                            overlapping += 1;
-                        } else {
-                            face[t] = f as i32;
-                            chart[t] = face_chart;
-                            covered += 1;
-                        }
-                    });
-                    if covered > before {
-                        charts.push(face_chart);
-                    }
-                }
-                charts.sort_unstable();
-                charts.dedup();
-                (covered, overlapping, charts)
-            })
-            .reduce(
-                || (0, 0, Vec::new()),
-                |(c0, o0, mut charts), (c1, o1, more)| {
-                    charts.extend(more);
-                    charts.sort_unstable();
-                    charts.dedup();
-                    (c0 + c1, o0 + o1, charts)
-                },
-            );
-        self.diagnostics.covered_texels = covered;
-        self.diagnostics.overlapping_texels = overlapping;
-        self.diagnostics.charts_without_texels = topology.n_charts - charts.len();
+        let mut charts_seen = vec![false; topology.n_charts];
+        for hit in hits {
+            let t = hit.texel as usize;
+            if self.face[t] >= 0 {
+                self.diagnostics.overlapping_texels += 1;
+                continue;
+            }
+            let chart = topology.face_chart[hit.face as usize];
+            self.face[t] = hit.face as i32;
+            self.chart[t] = chart;
+            charts_seen[chart as usize] = true;
+            self.diagnostics.covered_texels += 1;
+        }
+        self.diagnostics.charts_without_texels = charts_seen.iter().filter(|&&seen| !seen).count();
     }
 
     /// Triangle coverage has priority; an uncovered texel goes to the closest boundary edge.
@@ -207,14 +174,6 @@ impl Coverage {
 
     /// Approximate bytes per texel of coverage plus one frame of buffers, for memory checks.
     pub const BYTES_PER_TEXEL: u64 = 26 + 36 + 24;
-}
-
-/// Rows of texels per band of the triangle rasterisation (64 bands at 1024²).
-const BAND_ROWS: usize = 16;
-
-/// `n` copies of `value`, written in parallel (three buffers of 4 MB at 1024²: 5-7 ms in one thread).
-fn filled(n: usize, value: i32) -> Vec<i32> {
-    rayon::iter::repeat_n(value, n).collect()
 }
 
 /// Chart distance from which a texel is interior (see [`Coverage::interior_face`]).

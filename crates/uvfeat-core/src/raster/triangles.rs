@@ -3,31 +3,22 @@
 
 use glam::DVec2;
 
-use std::ops::Range;
-
-/// An edge function of one triangle edge, set up once per triangle: `sign * direction.perp_dot(c -
-/// origin)`, with the edge's endpoints in a canonical order so that the two triangles sharing an
-/// edge get exactly opposite values (no texel is covered twice or missed through rounding).
-#[derive(Clone, Copy)]
-struct EdgeFunction {
-    origin: DVec2,
-    direction: DVec2,
-    sign: f64,
+/// A texel whose centre lies in a triangle (its barycentrics are recomputed where needed:
+/// [`super::Coverage::anchor`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct TriangleHit {
+    pub texel: u32,
+    pub face: u32,
 }
 
-impl EdgeFunction {
-    fn new(p: DVec2, q: DVec2) -> Self {
-        if (p.x, p.y) <= (q.x, q.y) {
-            Self { origin: p, direction: q - p, sign: 1.0 }
-        } else {
-            Self { origin: q, direction: p - q, sign: -1.0 }
-        }
-    }
-
-    /// Twice the signed area of `(p, q, c)` (the sign flip is exact).
-    #[inline(always)]
-    fn at(&self, c: DVec2) -> f64 {
-        self.sign * self.direction.perp_dot(c - self.origin)
+/// Twice the signed area of `(p, q, c)`, computed with the edge's endpoints in a canonical order
+/// so that the two triangles sharing an edge get exactly opposite values (no texel is covered
+/// twice or missed through rounding).
+fn edge_function(p: DVec2, q: DVec2, c: DVec2) -> f64 {
+    if (p.x, p.y) <= (q.x, q.y) {
+        (q - p).perp_dot(c - p)
+    } else {
+        -(p - q).perp_dot(c - q)
     }
 }
 
@@ -37,14 +28,14 @@ fn owns_boundary(d: DVec2) -> bool {
     d.y < 0.0 || (d.y == 0.0 && d.x < 0.0)
 }
 
-/// The triangle `uv` in texel units, counter-clockwise, and the box of texel centres it may hold
-/// (columns, rows; empty for a degenerate triangle).
-fn texel_box(uv: [DVec2; 3], resolution: usize) -> ([DVec2; 3], Range<usize>, Range<usize>) {
+/// Appends every texel of a `resolution`² grid whose centre is inside the UV triangle `uv`.
+/// Works for both orientations (mirrored charts are clockwise in UV).
+pub(crate) fn rasterise_triangle(face: u32, uv: [DVec2; 3], resolution: usize, out: &mut Vec<TriangleHit>) {
     let scale = resolution as f64;
     let mut v = uv.map(|t| t * scale);
     let area2 = (v[1] - v[0]).perp_dot(v[2] - v[0]);
     if area2 == 0.0 || !area2.is_finite() {
-        return (v, 0..0, 0..0);
+        return;
     }
     // Work in counter-clockwise order.
     if area2 < 0.0 {
@@ -56,31 +47,17 @@ fn texel_box(uv: [DVec2; 3], resolution: usize) -> ([DVec2; 3], Range<usize>, Ra
     let (i0, i1) = ((lo.x - 0.5).ceil().max(0.0), (hi.x - 0.5).floor().min(last));
     let (j0, j1) = ((lo.y - 0.5).ceil().max(0.0), (hi.y - 0.5).floor().min(last));
     if i0 > i1 || j0 > j1 {
-        return (v, 0..0, 0..0);
+        return;
     }
-    (v, i0 as usize..i1 as usize + 1, j0 as usize..j1 as usize + 1)
-}
-
-/// The rows of a `resolution`² grid that may hold texel centres inside the UV triangle `uv`.
-pub(crate) fn triangle_rows(uv: [DVec2; 3], resolution: usize) -> Range<usize> {
-    texel_box(uv, resolution).2
-}
-
-/// Visits, row by row, every texel `j * resolution + i` of rows `rows` of a `resolution`² grid
-/// whose centre is inside the UV triangle `uv`. Works for both orientations (mirrored charts are
-/// clockwise in UV).
-pub(crate) fn rasterise_triangle(uv: [DVec2; 3], resolution: usize, rows: Range<usize>, mut visit: impl FnMut(usize)) {
-    let (v, columns, own_rows) = texel_box(uv, resolution);
-    let edges = [0, 1, 2].map(|k| EdgeFunction::new(v[k], v[(k + 1) % 3]));
     let owned = [0, 1, 2].map(|k| owns_boundary(v[(k + 1) % 3] - v[k]));
-    for j in own_rows.start.max(rows.start)..own_rows.end.min(rows.end) {
-        for i in columns.clone() {
+    for j in j0 as usize..=j1 as usize {
+        for i in i0 as usize..=i1 as usize {
             let c = DVec2::new(i as f64 + 0.5, j as f64 + 0.5);
-            let w = edges.map(|edge| edge.at(c));
+            let w = [0, 1, 2].map(|k| edge_function(v[k], v[(k + 1) % 3], c));
             if (0..3).any(|k| w[k] < 0.0 || (w[k] == 0.0 && !owned[k])) {
                 continue;
             }
-            visit(j * resolution + i);
+            out.push(TriangleHit { texel: (j * resolution + i) as u32, face });
         }
     }
 }
@@ -89,9 +66,9 @@ pub(crate) fn rasterise_triangle(uv: [DVec2; 3], resolution: usize, rows: Range<
 mod tests {
     use super::*;
 
-    fn hits(uv: [DVec2; 3], res: usize) -> Vec<usize> {
+    fn hits(uv: [DVec2; 3], res: usize) -> Vec<TriangleHit> {
         let mut out = Vec::new();
-        rasterise_triangle(uv, res, 0..res, |t| out.push(t));
+        rasterise_triangle(0, uv, res, &mut out);
         out
     }
 
@@ -101,8 +78,9 @@ mod tests {
         let (a, b, c, d) = (DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y);
         let mut all = hits([a, b, c], res);
         all.extend(hits([a, c, d], res)); // diagonal passes exactly through texel centres
-        all.sort_unstable();
-        assert_eq!(all, (0..res * res).collect::<Vec<_>>());
+        let mut texels: Vec<u32> = all.iter().map(|h| h.texel).collect();
+        texels.sort_unstable();
+        assert_eq!(texels, (0..(res * res) as u32).collect::<Vec<_>>());
     }
 
     #[test]
@@ -111,6 +89,6 @@ mod tests {
         let ccw = hits(uv, 32);
         let cw = hits([uv[0], uv[2], uv[1]], 32);
         assert!(ccw.len() > 50);
-        assert_eq!(ccw, cw);
+        assert_eq!(ccw.iter().map(|h| h.texel).collect::<Vec<_>>(), cw.iter().map(|h| h.texel).collect::<Vec<_>>());
     }
 }
