@@ -107,3 +107,10 @@ def test_with_atlas_names_a_bad_method_or_option():
         uvfeat.unwrap.chart_uvs(bare.positions, bare.faces, max_angle=95)
     with pytest.raises(uvfeat.InvalidParameterError, match="do not fit"):
         uvfeat.unwrap.chart_uvs(bare.positions, bare.faces, resolution=4, max_angle=1)
+
+
+def test_the_bounding_box_diagonal_leaves_out_vertices_no_face_uses():
+    assert uvfeat.Mesh(TRI, [[0, 1, 2]]).bounding_box_diagonal == pytest.approx(np.sqrt(2.0))
+    stray = np.vstack([TRI, [[50.0, -20.0, 7.0]]])
+    assert uvfeat.Mesh(stray, [[0, 1, 2]]).bounding_box_diagonal == pytest.approx(np.sqrt(2.0))
+    assert uvfeat.Mesh(stray, [[0, 1, 3]]).bounding_box_diagonal == pytest.approx(np.linalg.norm([50, 20, 7]))

@@ -174,8 +174,9 @@ class Mesh:
         used = np.zeros(len(self._positions), dtype=bool)
         used[self._faces.reshape(-1)] = True
         # Coordinate by coordinate: NumPy reduces an (n, 3) array along its rows slowly (7 ms of
-        # the 10 here for 100K vertices).
-        columns = np.ascontiguousarray(self._positions[used].T)
+        # the 10 here for 100K vertices). Where every vertex is used (most meshes), without the
+        # masked copy (2.3 -> 1.1 ms for 100K vertices).
+        columns = np.ascontiguousarray((self._positions if used.all() else self._positions[used]).T)
         return float(np.linalg.norm(columns.max(axis=1) - columns.min(axis=1)))
 
     # -- pre-processing -----------------------------------------------------------------------
