@@ -45,7 +45,7 @@ def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray
     """Boolean maps of the three flags over the computation texture; ``sheet_area`` is the area
     one sheet of the surface holds in each texel's ball, over ``pi r^2``."""
     truncated = n_border > 0
-    # Counts as floats: exact below 2^24 samples, and one conversion instead of three to int64.
+    # Summed as floats (exact at these counts): one conversion instead of three to int64.
     drawn = np.maximum(n_valid.astype(np.float32) + n_missing + n_border, 1)
     sheets = area_ratio / sheet_area
     with np.errstate(invalid="ignore"):
@@ -58,7 +58,7 @@ def texel_flags(n_valid: np.ndarray, n_missing: np.ndarray, n_border: np.ndarray
 
 def vertex_flags(mesh, flags: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """``(n_vertices,)`` booleans per flag: some corner of the vertex lies on a flagged texel.
-    The flags are packed into one bit each, looked up once per UV vertex and spread over the
+    The flags (eight at most) are packed into one bit each, looked up once per UV vertex and spread over the
     corners as bytes; only the flagged corners are then scattered (a million faces: a few MB, no
     per-corner coordinates; per flag, every corner's lookup and scatter took 1 ms per 100K
     vertices)."""
