@@ -5,7 +5,6 @@ use super::feature_map::FeatureMaps;
 use crate::atlas::Atlas;
 use crate::evaluation::{evaluate_point, prepare, Patterns};
 use crate::features::CurvatureMethod;
-use crate::mesh::NO_CORNER;
 use crate::sampling::Placement;
 use crate::settings::{ComputeSettings, VertexQuery};
 use glam::DVec2;
@@ -16,24 +15,25 @@ use rayon::prelude::*;
 /// (Flat, not a list per vertex: those lists took 140 bytes per vertex, the peak of a 5M-face run.)
 fn corners(atlas: &Atlas) -> (Vec<usize>, Vec<(DVec2, i32)>) {
     let topology = &atlas.topology;
-    let mut corners = vec![(DVec2::ZERO, -1); topology.n_corners];
-    let mut counts = vec![0usize; topology.n_geometric() + 1];
-    for (((tri, walk), &chart), groups) in
-        topology.faces.iter().zip(&topology.walk_faces).zip(&topology.face_chart).zip(&topology.corner_groups)
-    {
-        for k in (0..3).filter(|&k| groups[k] != NO_CORNER) {
-            let corner = &mut corners[groups[k] as usize];
-            if corner.1 < 0 {
-                *corner = (walk.corners[k], chart);
-                counts[tri[k] as usize + 1] += 1;
-            }
-        }
+    // Corner by corner in parallel, from the first of the faces round each (they are listed in face
+    // order), where one thread went over the faces: the 200K-face sphere's and torus's lookups of
+    // two features 4.5-4.8 -> 4.1 ms.
+    let corners: Vec<(DVec2, i32, u32)> = (0..topology.n_corners)
+        .into_par_iter()
+        .map(|corner| {
+            let face = topology.corner_faces[topology.corner_face_start[corner] as usize] as usize;
+            let k = topology.corner_groups[face].iter().position(|&c| c == corner as u32).unwrap_or(0);
+            (topology.walk_faces[face].corners[k], topology.face_chart[face], topology.faces[face][k])
+        })
+        .collect();
+    let mut offsets = vec![0usize; topology.n_geometric() + 1];
+    for &(_, _, vertex) in &corners {
+        offsets[vertex as usize + 1] += 1;
     }
-    let mut offsets = counts;
     for g in 1..offsets.len() {
         offsets[g] += offsets[g - 1];
     }
-    (offsets, corners)
+    (offsets, corners.into_iter().map(|(uv, chart, _)| (uv, chart)).collect())
 }
 
 /// Bilinear lookup of every map at `uv` into `out` (one value per map, NaN where the map has no
