@@ -214,3 +214,15 @@ def test_unknown_feature_lists_the_valid_ones():
     atlas = uvfeat.Atlas(uvfeat.shapes.plane(1.0, 4), 64)
     with pytest.raises(uvfeat.InvalidParameterError, match="valid: bending_energy.*shape_index"):
         atlas.compute("mean_curvture", 0.1)
+
+
+def test_the_neighbourhood_maps_are_shared_read_only_by_the_features_of_one_computation():
+    s = uvfeat.shapes.uv_sphere(1.0, 48, 24)
+    atlas = uvfeat.Atlas(uvfeat.Mesh(s.positions, s.faces, uvs=s.uvs, uv_faces=s.uv_faces), 128)
+    maps = atlas.compute(["mean_curvature", "gaussian_curvature"], 0.3, compute_resolution=64, samples=32)
+    h, k = maps["mean_curvature"], maps["gaussian_curvature"]
+    for name in ("n_valid", "n_missing", "n_border", "area_ratio", "sheet_area"):
+        assert getattr(h, name) is getattr(k, name)
+        with pytest.raises(ValueError):
+            getattr(h, name)[0, 0] = 0
+    assert h.texture is not k.texture and h.texture.flags.writeable

@@ -26,7 +26,9 @@ class FeatureMap:
     ``texture`` is ``(W_c, W_c)`` float32 (``(n_radii, W_c, W_c)`` for a scale stack), indexed
     ``[j, i]`` with v up, NaN outside charts. Diagnostics maps have the same layout: ``n_valid``,
     ``n_missing`` (relocation failed), ``n_border`` (samples dropped at a mesh border: the
-    neighbourhood is truncated there and values are biased; see ``truncated``).
+    neighbourhood is truncated there and values are biased; see ``truncated``). The diagnostics
+    maps (and ``area_ratio``, ``sheet_area``, the fit's maps) belong to the neighbourhoods and are
+    shared, read-only, by the features of one computation: copy one to change it.
 
     With ``method="fit"`` the curvature features come from the quadric fit, and
     ``principal_directions`` (``(W_c, W_c, 2, 3)``: unit ``d1`` of ``k1`` and ``d2`` of ``k2``, a
