@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
+from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
 from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
 
@@ -176,11 +177,10 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
         return np.stack(arrays) if stack else arrays[0]
 
     # The neighbourhoods' maps are the same for every feature: one read-only copy serves them all.
-    shared = {name: _readonly(gather(lambda m, name=name: getattr(m, name)))
-              for name in ("n_valid", "n_missing", "n_border", "area_ratio", "sheet_area")}
+    neighbourhood_maps = ["n_valid", "n_missing", "n_border", "area_ratio", "sheet_area"]
     if opts["method"] == "fit":
-        shared.update({name: _readonly(gather(lambda m, name=name: getattr(m, name)))
-                       for name in ("principal_directions", "fit_residual")})
+        neighbourhood_maps += ["principal_directions", "fit_residual"]
+    shared = {name: _readonly(gather(lambda m, name=name: getattr(m, name))) for name in neighbourhood_maps}
     out, cache = {}, {}
     for k, name in enumerate(names):
         errors = [m.standard_errors(k) for m in all_maps]
@@ -199,11 +199,6 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
         )
     _warn_about_flagged_vertices(out[names[0]], radius if stack else [radius])
     return out
-
-
-def _readonly(array: np.ndarray) -> np.ndarray:
-    array.flags.writeable = False
-    return array
 
 
 def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:

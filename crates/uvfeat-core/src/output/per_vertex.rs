@@ -18,22 +18,23 @@ fn corners(atlas: &Atlas) -> (Vec<usize>, Vec<(DVec2, i32)>) {
     // Corner by corner in parallel, from the first of the faces round each (they are listed in face
     // order), where one thread went over the faces: the 200K-face sphere's and torus's lookups of
     // two features 4.5-4.8 -> 4.1 ms.
-    let corners: Vec<(DVec2, i32, u32)> = (0..topology.n_corners)
+    let (corners, vertices): (Vec<(DVec2, i32)>, Vec<u32>) = (0..topology.n_corners)
         .into_par_iter()
         .map(|corner| {
             let face = topology.corner_faces[topology.corner_face_start[corner] as usize] as usize;
+            // The face lists the corner among its own (it is round it).
             let k = topology.corner_groups[face].iter().position(|&c| c == corner as u32).unwrap_or(0);
-            (topology.walk_faces[face].corners[k], topology.face_chart[face], topology.faces[face][k])
+            ((topology.walk_faces[face].corners[k], topology.face_chart[face]), topology.faces[face][k])
         })
-        .collect();
+        .unzip();
     let mut offsets = vec![0usize; topology.n_geometric() + 1];
-    for &(_, _, vertex) in &corners {
+    for &vertex in &vertices {
         offsets[vertex as usize + 1] += 1;
     }
     for g in 1..offsets.len() {
         offsets[g] += offsets[g - 1];
     }
-    (offsets, corners.into_iter().map(|(uv, chart, _)| (uv, chart)).collect())
+    (offsets, corners)
 }
 
 /// Bilinear lookup of every map at `uv` into `out` (one value per map, NaN where the map has no
