@@ -7,7 +7,8 @@ use crate::mesh::{SideKind, Topology};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-/// The part of one face in one texel (or, summed, a surfel): area and area-weighted sums.
+/// The part of one face in one texel (or, summed, a surfel): area and area-weighted sums, and
+/// how the area spreads about its centroid.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Fragment {
     pub texel: u32,
@@ -15,6 +16,47 @@ pub(super) struct Fragment {
     pub area: f64,
     pub moment: DVec3,
     pub normal: DVec3,
+    /// `sum dA |q - c|^2` about the centroid `c`.
+    pub spread: f64,
+    /// Farthest distance of the fragment's surface from its centroid (an upper bound).
+    pub reach: f64,
+}
+
+impl Fragment {
+    /// Nothing of `chart` in `texel` yet.
+    pub fn empty(texel: u32, chart: i32) -> Self {
+        Self { texel, chart, area: 0.0, moment: DVec3::ZERO, normal: DVec3::ZERO, spread: 0.0, reach: 0.0 }
+    }
+
+    /// Area centroid (the origin without area).
+    pub fn centroid(&self) -> DVec3 {
+        if self.area > 0.0 {
+            self.moment / self.area
+        } else {
+            DVec3::ZERO
+        }
+    }
+
+    /// Adds `other`'s surface: the spread by the parallel-axis theorem (about each part's own
+    /// centroid, so far from the origin nothing cancels), the reach by the triangle inequality.
+    pub fn absorb(&mut self, other: &Fragment) {
+        if !(other.area > 0.0) {
+            return;
+        }
+        if !(self.area > 0.0) {
+            *self = Fragment { texel: self.texel, chart: self.chart, ..*other };
+            return;
+        }
+        let (a, b) = (self.centroid(), other.centroid());
+        let area = self.area + other.area;
+        let moment = self.moment + other.moment;
+        let c = moment / area;
+        self.spread += other.spread + self.area * other.area / area * (a - b).length_squared();
+        self.reach = (self.reach + (a - c).length()).max(other.reach + (b - c).length());
+        self.area = area;
+        self.moment = moment;
+        self.normal += other.normal;
+    }
 }
 
 /// The same seam point seen from its two faces: parametric point and chart on each side.
@@ -60,11 +102,7 @@ pub(super) fn texel_sums(topology: &Topology, frame: &Frame, width: usize, smoot
             let mut sums: Vec<Fragment> = Vec::new();
             for piece in pieces {
                 match sums.last_mut() {
-                    Some(sum) if (sum.texel, sum.chart) == (piece.texel, piece.chart) => {
-                        sum.area += piece.area;
-                        sum.moment += piece.moment;
-                        sum.normal += piece.normal;
-                    }
+                    Some(sum) if (sum.texel, sum.chart) == (piece.texel, piece.chart) => sum.absorb(&piece),
                     _ => sums.push(piece),
                 }
             }
@@ -115,12 +153,20 @@ fn face_fragments(
             }
             let uv = centroid / w;
             let position = if smooth { map.smooth_position(uv) } else { map.position(uv) };
+            // The face's map is affine: texel offsets from the centroid map to 3D through J / W.
+            let to_3d = |d: DVec2| (map.jacobian.pu * d.x + map.jacobian.pv * d.y) / w;
+            let [cxx, cxy, cyy] = piece.covariance(centroid);
+            let (pu, pv) = (to_3d(DVec2::X), to_3d(DVec2::Y));
+            let spread = area * (cxx * pu.length_squared() + 2.0 * cxy * pu.dot(pv) + cyy * pv.length_squared());
+            let reach = piece.points[..piece.len].iter().map(|&p| to_3d(p - centroid).length()).fold(0.0, f64::max);
             out.push(Fragment {
                 texel: (j * width + i) as u32,
                 chart,
                 area,
                 moment: position * area,
                 normal: map.normal(uv) * area,
+                spread: spread.max(0.0),
+                reach,
             });
         }
     }
@@ -224,6 +270,25 @@ impl Polygon {
         }
         (twice_area.abs() / 2.0, moment / (3.0 * twice_area))
     }
+
+    /// Area covariance `[xx, xy, yy]` about `centroid` (per unit area): the polygon's second
+    /// moments by the shoelace formulas, taken about the centroid so nothing cancels.
+    fn covariance(&self, centroid: DVec2) -> [f64; 3] {
+        let (mut twice_area, mut xx, mut xy, mut yy) = (0.0, 0.0, 0.0, 0.0);
+        for k in 0..self.len {
+            let (a, b) = (self.points[k] - centroid, self.points[(k + 1) % self.len] - centroid);
+            let cross = a.perp_dot(b);
+            twice_area += cross;
+            xx += (a.x * a.x + a.x * b.x + b.x * b.x) * cross;
+            yy += (a.y * a.y + a.y * b.y + b.y * b.y) * cross;
+            xy += (a.x * b.y + 2.0 * a.x * a.y + 2.0 * b.x * b.y + b.x * a.y) * cross;
+        }
+        if twice_area == 0.0 {
+            return [0.0; 3];
+        }
+        // Integrals are (1/12, 1/24, 1/12) of the sums; the area is half of `twice_area`.
+        [xx / (6.0 * twice_area), xy / (12.0 * twice_area), yy / (6.0 * twice_area)]
+    }
 }
 
 #[cfg(test)]
@@ -244,5 +309,41 @@ mod tests {
             }
         }
         assert!((sum - area).abs() < 1e-12 && (moment / sum - centroid).length() < 1e-12);
+    }
+
+    #[test]
+    fn covariance_of_a_unit_square_and_a_right_triangle() {
+        let square = Polygon {
+            points: [
+                DVec2::ZERO,
+                DVec2::X,
+                DVec2::ONE,
+                DVec2::Y,
+                DVec2::ZERO,
+                DVec2::ZERO,
+                DVec2::ZERO,
+                DVec2::ZERO,
+                DVec2::ZERO,
+            ],
+            len: 4,
+        };
+        let [xx, xy, yy] = square.covariance(DVec2::splat(0.5));
+        assert!((xx - 1.0 / 12.0).abs() < 1e-15 && xy.abs() < 1e-15 && (yy - 1.0 / 12.0).abs() < 1e-15);
+        // Right triangle (0,0), (1,0), (0,1): Var x = Var y = 1/18, Cov = -1/36.
+        let triangle = Polygon::from(&[DVec2::ZERO, DVec2::X, DVec2::Y]);
+        let (_, c) = triangle.area_centroid();
+        let [xx, xy, yy] = triangle.covariance(c);
+        assert!((xx - 1.0 / 18.0).abs() < 1e-15 && (xy + 1.0 / 36.0).abs() < 1e-15 && (yy - 1.0 / 18.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn absorbed_fragments_keep_the_spread_of_the_whole() {
+        // Two points of area 1 at x = 0 and x = 2: spread about x = 1 is 2.
+        let at = |x: f64| Fragment { moment: DVec3::new(x, 0.0, 0.0), area: 1.0, ..Fragment::empty(0, 0) };
+        let mut sum = Fragment::empty(0, 0);
+        sum.absorb(&at(0.0));
+        sum.absorb(&at(2.0));
+        assert!((sum.spread - 2.0).abs() < 1e-15 && (sum.reach - 1.0).abs() < 1e-15);
+        assert_eq!(sum.centroid(), DVec3::new(1.0, 0.0, 0.0));
     }
 }

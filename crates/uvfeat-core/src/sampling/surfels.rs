@@ -92,7 +92,7 @@ pub fn gather_surfels(
         let mut next = 0;
         while let Some(&s) = queue.get(next) {
             next += 1;
-            let SurfelPoint { position, area } = level.point[s as usize];
+            let SurfelPoint { position, area, .. } = level.point[s as usize];
             let offset = position - p;
             let distance = offset.length();
             if distance >= outer {
