@@ -256,6 +256,28 @@ class Atlas:
         return compute_maps(self, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
 
+    def per_vertex(self, features, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
+                   compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+                   adaptive: bool = ARGUMENT_DEFAULTS["adaptive"], seed: int = ARGUMENT_DEFAULTS["seed"], *,
+                   paper_mode: bool = False, **options) -> dict[str, np.ndarray]:
+        """Features at every vertex of ``mesh.positions``, without maps where none are needed.
+
+        Arguments as :meth:`compute`. With ``quadrature="surfels"`` (and the integral estimators)
+        each vertex is the centre of its own neighbourhood: the surfels connected to it inside the
+        ball, summed with their exact area moments (DESIGN.md §1.4.9), with no texture computed
+        or read, which is both faster and more accurate than reading maps (``query`` does not
+        apply). Otherwise the maps of :meth:`compute` are read with ``query``.
+
+        Returns
+        -------
+        dict of str to ndarray
+            ``(n_vertices,)`` float32 per feature (``(n_radii, n_vertices)`` for a list of radii).
+        """
+        from .features import vertex_values
+
+        return vertex_values(self, features, radius, samples=samples, compute_resolution=compute_resolution,
+                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
+
     def neighbourhoods(self, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
                        compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
                        seed: int = ARGUMENT_DEFAULTS["seed"], tile_texels: int = 16384, **options):

@@ -12,9 +12,10 @@ def compute(mesh: Mesh, features, radius, *, resolution: int = 1024, precision: 
             paper_mode: bool = False, **options) -> dict[str, np.ndarray]:
     """Per-vertex features of ``mesh`` (one value per row of ``mesh.positions``).
 
-    Builds an :class:`~uvfeat.Atlas` at ``resolution`` and calls :meth:`~uvfeat.Atlas.compute`
+    Builds an :class:`~uvfeat.Atlas` at ``resolution`` and calls :meth:`~uvfeat.Atlas.per_vertex`
     with ``features``, ``radius`` and ``**options`` (``samples``, ``compute_resolution``,
-    ``adaptive``, ``seed``, ...). For several calls on the same mesh keep an Atlas instead.
+    ``adaptive``, ``seed``, ``quadrature``, ...): with ``quadrature="surfels"`` the values are
+    evaluated at the vertices, with no maps. For several calls on the same mesh keep an Atlas.
 
     Returns
     -------
@@ -26,5 +27,4 @@ def compute(mesh: Mesh, features, radius, *, resolution: int = 1024, precision: 
     if paper_mode:
         precision = "f16"
     atlas = Atlas(mesh, resolution=resolution, precision=precision)
-    maps = atlas.compute(features, radius, paper_mode=paper_mode, **options)
-    return {name: feature.per_vertex() for name, feature in maps.items()}
+    return atlas.per_vertex(features, radius, paper_mode=paper_mode, **options)

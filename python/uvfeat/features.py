@@ -201,6 +201,28 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
     return out
 
 
+def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,
+                  paper_mode: bool, options: dict) -> dict[str, np.ndarray]:
+    """The work behind :meth:`uvfeat.Atlas.per_vertex`: with ``quadrature="surfels"`` and the
+    integral estimators each vertex is the centre of its own neighbourhood, summed over the
+    surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
+    :func:`compute_maps`, read with ``query``."""
+    opts = resolve_options(options, paper_mode)
+    if opts["quadrature"] != "surfels" or opts["method"] != "integral":
+        maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
+                            adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
+        return {name: feature.per_vertex() for name, feature in maps.items()}
+    names = feature_names(features)
+    stack = isinstance(radius, (list, tuple, np.ndarray))
+    diagonal = atlas.mesh.bounding_box_diagonal
+    resolution = check_resolution(compute_resolution, "compute_resolution")
+    per_radius = []
+    for r in (radius if stack else [radius]):
+        settings = _core_settings(names, resolve_radius(r, diagonal), samples, resolution, adaptive, seed, opts)
+        per_radius.append(_core.vertex_feature_values(atlas._core, settings)[0])
+    return {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
+
+
 def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:
     flags = feature.vertex_flags()
     per_radius = [flags] if not feature.is_stack else [{n: f[k] for n, f in flags.items()} for k in range(len(radii))]

@@ -8,7 +8,9 @@ use crate::settings::{named, PySettings};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use uvfeat_core::output::{neighbourhood_tile, per_corner, per_vertex, per_vertex_directions, FeatureMaps};
+use uvfeat_core::output::{
+    neighbourhood_tile, per_corner, per_vertex, per_vertex_directions, vertex_values, FeatureMaps,
+};
 use uvfeat_core::settings::{ComputeSettings, VertexQuery};
 
 /// UVs and geometric vertices of the atlas corners, and one array of values per feature.
@@ -166,6 +168,24 @@ pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> P
     let (core, s) = (atlas.core(), &settings.inner);
     let inner = guarded(py, || FeatureMaps::compute(core, s))?;
     Ok(PyFeatureMaps { inner, settings: settings.inner.clone() })
+}
+
+/// One array of values per feature, and the surfels each vertex summed.
+type VertexArrays<'py> = (Vec<Bound<'py, PyArrayDyn<f32>>>, Bound<'py, PyArrayDyn<u32>>);
+
+/// Every feature at every input vertex, evaluated at the vertices from the surfels' moments (GIL
+/// released, parallel).
+#[pyfunction]
+pub fn vertex_feature_values<'py>(
+    py: Python<'py>,
+    atlas: &PyAtlas,
+    settings: &PySettings,
+) -> PyResult<VertexArrays<'py>> {
+    let (core, s) = (atlas.core(), &settings.inner);
+    let (values, summed) = guarded(py, || vertex_values(core, s))?;
+    let n = summed.len();
+    let arrays = values.into_iter().map(|v| to_numpy(py, v, &[n])).collect::<PyResult<_>>()?;
+    Ok((arrays, to_numpy(py, summed, &[n])?))
 }
 
 type TileArrays<'py> = (

@@ -26,6 +26,16 @@ impl WeightedSums {
         self.wg2 += w * g * g;
     }
 
+    /// Adds a piece of surface whose weight `w` and `sum w g` are summed over it (exactly where
+    /// the integrand is linear in the position) and `sum w g^2` given as read at its centroid.
+    #[inline]
+    pub fn add_parts(&mut self, w: f64, wg: f64, wg2: f64) {
+        self.w += w;
+        self.w2 += w * w;
+        self.wg += wg;
+        self.wg2 += wg2;
+    }
+
     fn merge(&mut self, other: &Self) {
         self.w += other.w;
         self.w2 += other.w2;

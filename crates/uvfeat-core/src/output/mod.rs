@@ -9,6 +9,7 @@ mod per_vertex;
 mod screen;
 mod shaded_view;
 mod sheet_area;
+mod vertex_values;
 
 pub use feature_map::{FeatureMaps, MapSummary, SEVERAL_SHEETS};
 pub use front_side::front_side;
@@ -16,3 +17,4 @@ pub use neighbourhood_tiles::{neighbourhood_tile, NeighbourhoodTile};
 pub use per_vertex::{per_corner, per_vertex, per_vertex_directions};
 pub use screen::{rasterise_screen, ScreenFragments, NO_FACE};
 pub use shaded_view::{shaded_view, ColourScale, Front, ViewFrame, AMBIENT};
+pub use vertex_values::{sums_apply, vertex_values};

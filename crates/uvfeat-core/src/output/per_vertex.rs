@@ -10,21 +10,34 @@ use crate::settings::{ComputeSettings, VertexQuery};
 use glam::DVec2;
 use rayon::prelude::*;
 
-/// Distinct `(uv, chart)` corners of every geometric vertex: the atlas corners, which are
-/// numbered in order of their vertex, so vertex `g` has corners `offsets[g]..offsets[g + 1]`.
-/// (Flat, not a list per vertex: those lists took 140 bytes per vertex, the peak of a 5M-face run.)
-fn corners(atlas: &Atlas) -> (Vec<usize>, Vec<(DVec2, i32)>) {
+/// One atlas corner of a vertex: its UV, chart and the first face round it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Corner {
+    pub uv: DVec2,
+    pub chart: i32,
+    pub face: u32,
+}
+
+/// The distinct corners of every geometric vertex: the atlas corners, which are numbered in order
+/// of their vertex, so vertex `g` has corners `offsets[g]..offsets[g + 1]`. (Flat, not a list per
+/// vertex: those lists took 140 bytes per vertex, the peak of a 5M-face run.)
+pub(super) fn corners(atlas: &Atlas) -> (Vec<usize>, Vec<Corner>) {
     let topology = &atlas.topology;
     // Corner by corner in parallel, from the first of the faces round each (they are listed in face
     // order), where one thread went over the faces: the 200K-face sphere's and torus's lookups of
     // two features 4.5-4.8 -> 4.1 ms.
-    let (corners, vertices): (Vec<(DVec2, i32)>, Vec<u32>) = (0..topology.n_corners)
+    let (corners, vertices): (Vec<Corner>, Vec<u32>) = (0..topology.n_corners)
         .into_par_iter()
         .map(|corner| {
             let face = topology.corner_faces[topology.corner_face_start[corner] as usize] as usize;
             // The face lists the corner among its own (it is round it).
             let k = topology.corner_groups[face].iter().position(|&c| c == corner as u32).unwrap_or(0);
-            ((topology.walk_faces[face].corners[k], topology.face_chart[face]), topology.faces[face][k])
+            let corner = Corner {
+                uv: topology.walk_faces[face].corners[k],
+                chart: topology.face_chart[face],
+                face: face as u32,
+            };
+            (corner, topology.faces[face][k])
         })
         .unzip();
     let mut offsets = vec![0usize; topology.n_geometric() + 1];
@@ -136,7 +149,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             means.reset(n_features);
             let mut found = false;
             if query == VertexQuery::Texture {
-                for &(uv, chart) in list {
+                for &Corner { uv, chart, .. } in list {
                     if lookup(maps, uv, chart, &mut means.corner_values) {
                         means.add_corner();
                         found = true;
@@ -145,7 +158,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             }
             if !found {
                 let placement = Placement::of_vertex(vertex as u32, settings.seed);
-                for &(uv, _) in list {
+                for &Corner { uv, .. } in list {
                     let result = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
                     for (slot, f) in means.corner_values.iter_mut().zip(&maps.features) {
                         *slot = f64::from(result.values[f.index()]);
@@ -168,14 +181,14 @@ pub fn per_corner(atlas: &Atlas, maps: &FeatureMaps) -> (Vec<DVec2>, Vec<u32>, V
     let (offsets, corners) = corners(atlas);
     let n_features = maps.features.len();
     let mut values = vec![f64::NAN; corners.len() * n_features];
-    values.par_chunks_mut(n_features.max(1)).zip(&corners).for_each(|(out, &(uv, chart))| {
-        lookup(maps, uv, chart, out);
+    values.par_chunks_mut(n_features.max(1)).zip(&corners).for_each(|(out, corner)| {
+        lookup(maps, corner.uv, corner.chart, out);
     });
     let per_feature =
         (0..n_features).map(|f| values.iter().skip(f).step_by(n_features).map(|&v| v as f32).collect()).collect();
     let vertex =
         offsets.windows(2).enumerate().flat_map(|(g, range)| std::iter::repeat_n(g as u32, range[1] - range[0]));
-    (corners.iter().map(|&(uv, _)| uv).collect(), vertex.collect(), per_feature)
+    (corners.iter().map(|c| c.uv).collect(), vertex.collect(), per_feature)
 }
 
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
@@ -194,7 +207,7 @@ pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[
             let placement = Placement::of_vertex(vertex as u32, settings.seed);
             corners[offsets[vertex]..offsets[vertex + 1]]
                 .iter()
-                .map(|&(uv, _)| evaluate_point(atlas, uv, placement, &settings, &patterns, scratch).directions)
+                .map(|c| evaluate_point(atlas, c.uv, placement, &settings, &patterns, scratch).directions)
                 .find(|d| d[0][0].is_finite())
                 .unwrap_or([[f32::NAN; 3]; 2])
         })

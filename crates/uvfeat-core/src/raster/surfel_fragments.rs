@@ -18,14 +18,12 @@ pub(super) struct Fragment {
     pub normal: DVec3,
     /// `sum dA |q - c|^2` about the centroid `c`.
     pub spread: f64,
-    /// Farthest distance of the fragment's surface from its centroid (an upper bound).
-    pub reach: f64,
 }
 
 impl Fragment {
     /// Nothing of `chart` in `texel` yet.
     pub fn empty(texel: u32, chart: i32) -> Self {
-        Self { texel, chart, area: 0.0, moment: DVec3::ZERO, normal: DVec3::ZERO, spread: 0.0, reach: 0.0 }
+        Self { texel, chart, area: 0.0, moment: DVec3::ZERO, normal: DVec3::ZERO, spread: 0.0 }
     }
 
     /// Area centroid (the origin without area).
@@ -37,8 +35,8 @@ impl Fragment {
         }
     }
 
-    /// Adds `other`'s surface: the spread by the parallel-axis theorem (about each part's own
-    /// centroid, so far from the origin nothing cancels), the reach by the triangle inequality.
+    /// Adds `other`'s surface, its spread by the parallel-axis theorem (about each part's own
+    /// centroid, so that far from the origin nothing cancels).
     pub fn absorb(&mut self, other: &Fragment) {
         if !(other.area > 0.0) {
             return;
@@ -50,9 +48,7 @@ impl Fragment {
         let (a, b) = (self.centroid(), other.centroid());
         let area = self.area + other.area;
         let moment = self.moment + other.moment;
-        let c = moment / area;
         self.spread += other.spread + self.area * other.area / area * (a - b).length_squared();
-        self.reach = (self.reach + (a - c).length()).max(other.reach + (b - c).length());
         self.area = area;
         self.moment = moment;
         self.normal += other.normal;
@@ -158,7 +154,6 @@ fn face_fragments(
             let [cxx, cxy, cyy] = piece.covariance(centroid);
             let (pu, pv) = (to_3d(DVec2::X), to_3d(DVec2::Y));
             let spread = area * (cxx * pu.length_squared() + 2.0 * cxy * pu.dot(pv) + cyy * pv.length_squared());
-            let reach = piece.points[..piece.len].iter().map(|&p| to_3d(p - centroid).length()).fold(0.0, f64::max);
             out.push(Fragment {
                 texel: (j * width + i) as u32,
                 chart,
@@ -166,7 +161,6 @@ fn face_fragments(
                 moment: position * area,
                 normal: map.normal(uv) * area,
                 spread: spread.max(0.0),
-                reach,
             });
         }
     }
@@ -343,7 +337,7 @@ mod tests {
         let mut sum = Fragment::empty(0, 0);
         sum.absorb(&at(0.0));
         sum.absorb(&at(2.0));
-        assert!((sum.spread - 2.0).abs() < 1e-15 && (sum.reach - 1.0).abs() < 1e-15);
+        assert!((sum.spread - 2.0).abs() < 1e-15);
         assert_eq!(sum.centroid(), DVec3::new(1.0, 0.0, 0.0));
     }
 }

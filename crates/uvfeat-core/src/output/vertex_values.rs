@@ -1,0 +1,105 @@
+//! Per-vertex values evaluated at the vertices themselves (DESIGN.md §1.9): each welded vertex is
+//! the centre of its own neighbourhood, whose surfels' moments are summed (DESIGN.md §1.4.9), with
+//! no feature map in between (`Atlas.per_vertex` and `uvfeat.compute` with the surfels).
+
+use super::per_vertex::corners;
+use crate::atlas::Atlas;
+use crate::error::{Result, UvfeatError};
+use crate::evaluation::PixelResult;
+use crate::features::CurvatureMethod;
+use crate::sampling::{surfel_sums, Quadrature, SurfelCentre, SurfelSumSettings};
+use crate::settings::ComputeSettings;
+use rayon::prelude::*;
+
+/// Whether `settings` can be evaluated from the surfels' moments: the surfel quadrature's integral
+/// estimators (the quadric fit needs every sample, not sums).
+pub fn sums_apply(settings: &ComputeSettings) -> bool {
+    settings.quadrature == Quadrature::Surfels && settings.method == CurvatureMethod::Integral
+}
+
+/// Every feature of `settings` at every *input* vertex (one `Vec` per feature, in the order of
+/// `settings.features`; vertices the file split at seams share their welded vertex's value; NaN
+/// where a vertex is on no chart), with each vertex's summed surfels.
+///
+/// # Errors
+/// [`UvfeatError::InvalidParameter`] for settings that fail validation or that the sums do not
+/// serve ([`sums_apply`]).
+pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<(Vec<Vec<f32>>, Vec<u32>)> {
+    settings.validate()?;
+    if !sums_apply(settings) {
+        return Err(UvfeatError::InvalidParameter {
+            name: "quadrature",
+            reason: "values at the vertices sum the surfels' moments: quadrature=\"surfels\" with method=\"integral\""
+                .into(),
+        });
+    }
+    let (offsets, corners) = corners(atlas);
+    let sum_settings = SurfelSumSettings {
+        stats: settings.stats(),
+        surface: settings.surface,
+        with_normals: settings.sampler().with_normals,
+    };
+    let frame = &atlas.frame;
+    let resolution = atlas.resolution() as f64;
+    atlas.surfels(settings.surface);
+    let first_corner = |vertex: usize| corners.get(offsets[vertex]..offsets[vertex + 1]).and_then(|c| c.first());
+    // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
+    // in turn share most of their surfels, which then come from the cache (the search is bound by
+    // memory latency: in the file's order the armadillo took 1.9x as long).
+    let mut order: Vec<(u64, u32)> = (0..offsets.len() - 1)
+        .into_par_iter()
+        .map(|vertex| {
+            let key = first_corner(vertex).map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution()));
+            (key, vertex as u32)
+        })
+        .collect();
+    order.par_sort_unstable();
+    let sorted: Vec<PixelResult> = order
+        .par_iter()
+        .map(|&(_, vertex)| {
+            let vertex = vertex as usize;
+            let Some(corner) = first_corner(vertex) else {
+                return PixelResult::EMPTY;
+            };
+            let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
+            let centre = SurfelCentre {
+                position: frame.positions[vertex],
+                normal: frame.normals[vertex],
+                uv: corner.uv,
+                chart: corner.chart,
+                texel_length: distortion.sigma1 / resolution,
+                texel_side: distortion.area_element().sqrt() / resolution,
+            };
+            let (stats, counts) = surfel_sums(atlas, &centre, &sum_settings);
+            if counts.valid == 0 {
+                return PixelResult::EMPTY;
+            }
+            PixelResult::estimated(&stats, None, counts, settings)
+        })
+        .collect();
+    let mut results = vec![PixelResult::EMPTY; sorted.len()];
+    for (&(_, vertex), result) in order.iter().zip(sorted) {
+        results[vertex as usize] = result;
+    }
+    let ids = &atlas.topology.vertex_ids;
+    let values = settings
+        .features
+        .iter()
+        .map(|f| ids.iter().map(|&g| results[g as usize].values[f.index()]).collect())
+        .collect();
+    Ok((values, ids.iter().map(|&g| results[g as usize].counts.valid).collect()))
+}
+
+/// Position of texel-space point `uv` along a Z (Morton) curve over a `resolution`² grid.
+fn z_order(uv: glam::DVec2, resolution: usize) -> u64 {
+    let cell = |x: f64| (x * resolution as f64).clamp(0.0, resolution as f64 - 1.0) as u64;
+    let spread = |mut x: u64| {
+        x &= 0xffff_ffff;
+        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        (x | (x << 1)) & 0x5555_5555_5555_5555
+    };
+    spread(cell(uv.x)) | (spread(cell(uv.y)) << 1)
+}

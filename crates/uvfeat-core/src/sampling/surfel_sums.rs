@@ -1,0 +1,187 @@
+//! A neighbourhood's sums straight from the surfels (DESIGN.md §1.4.9): the integral estimators'
+//! moments of each surfel summed over the ball's connected part, with no sample list.
+//!
+//! The flat surfel quadrature (DESIGN.md §1.4.8) turns each surfel into a sample at its centroid.
+//! The moments the integral estimators read are `dA (q - p)` (H's numerator, K's `<k>`), which a
+//! surfel's area and centroid give exactly, and `dA |q - p|^2` (H's denominator, K's weights),
+//! which its spread about the centroid adds exactly (`area |c - p|^2 + spread`); only K's
+//! `dA (n.(q - p))^2 / rho^2` and the volumes' `dA rho` are read at the centroid. Summed this way
+//! a ball needs fewer surfels for the same accuracy ([`SURFELS`] against the flat quadrature's 512).
+//!
+//! The search runs over the level's adjacency from the centre's surfel while the centroids are
+//! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
+//! and the object-space reference's; a linear ramp one surfel wide weighs a plane's disk exactly.
+
+use super::sample::{ramp_centre, SampleCounts};
+use crate::atlas::Atlas;
+use crate::features::{NeighbourhoodStats, StatsSettings};
+use crate::raster::{Surface, SurfelLevel, SurfelPoint, Surfels};
+use crate::stamps::Stamps;
+use glam::{DVec2, DVec3};
+use std::cell::RefCell;
+
+/// Surfels a plane's ball holds at the level summed. On the shared scans at r = 1-8 % this keeps
+/// H and K within 0.3 % of the converged reference's range where the atlas resolution allows the
+/// level (docs/BENCHMARKS.md); 128 doubled K's error at 8 %, 512 cost 1.6x the time.
+pub const SURFELS: f64 = 256.0;
+
+thread_local! {
+    /// Per thread: the surfels reached and the search's queue.
+    static SCRATCH: RefCell<(Stamps, Vec<u32>)> = RefCell::new((Stamps::new(0), Vec::new()));
+}
+
+/// Where a neighbourhood is centred: a surface point, its unit normal, where it lies in the atlas
+/// and the object length of one texel there.
+#[derive(Debug, Clone, Copy)]
+pub struct SurfelCentre {
+    /// Position `p`.
+    pub position: DVec3,
+    /// Unit normal `n`.
+    pub normal: DVec3,
+    /// Parametric point of `p` in `chart`.
+    pub uv: DVec2,
+    /// Chart of `uv`.
+    pub chart: i32,
+    /// Object length of one texel of the atlas at `p` along its longer side (the largest
+    /// singular value of the parametrisation over `W`): a stretched chart's surfels, longer than
+    /// wide, take a finer level, as the flat quadrature's.
+    pub texel_length: f64,
+    /// Object length of one texel's side for its area: `sqrt(sigma_1 sigma_2) / W` (the ramp's
+    /// width, as the flat quadrature's).
+    pub texel_side: f64,
+}
+
+/// What the sums read besides the centre.
+#[derive(Debug, Clone, Copy)]
+pub struct SurfelSumSettings {
+    /// Radius and the estimators' weights.
+    pub stats: StatsSettings,
+    /// Surface the surfels lie on.
+    pub surface: Surface,
+    /// Sum the samples' normals (bending energy).
+    pub with_normals: bool,
+}
+
+/// The level of the pyramid whose surfels put about `target` in the ball, for surfels
+/// `texel_length` long at the finest level.
+fn level_for(surfels: &Surfels, texel_length: f64, radius: f64, target: f64) -> usize {
+    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_length;
+    (scale.log2().round().max(0.0) as usize).min(surfels.levels.len().saturating_sub(1))
+}
+
+/// The sums of the ball's connected part around `centre`, with their sample counts (`valid`:
+/// surfels summed; `border`: those in the ball a mesh border passes through). Empty sums where the
+/// centre's texel holds no surfel of its chart.
+pub fn surfel_sums(
+    atlas: &Atlas,
+    centre: &SurfelCentre,
+    settings: &SurfelSumSettings,
+) -> (NeighbourhoodStats, SampleCounts) {
+    let surfels = atlas.surfels(settings.surface);
+    let mut stats = NeighbourhoodStats::default();
+    let mut counts = SampleCounts::default();
+    let finest = &surfels.levels[0];
+    let Some(start) = atlas
+        .nearest_texel(centre.uv, |t| finest.at(t, centre.chart).is_some())
+        .and_then(|t| finest.at(t, centre.chart))
+    else {
+        return (stats, counts);
+    };
+    let r = settings.stats.radius;
+    let k = level_for(surfels, centre.texel_length, r, SURFELS);
+    // The ramp: one surfel wide, centred to weigh a disk exactly (as the flat quadrature's).
+    let width = (centre.texel_side * (1u64 << k) as f64).min(0.5 * r);
+    let edge = r * ramp_centre(width / r);
+    let ball = Ball {
+        p: centre.position,
+        n: centre.normal,
+        outer: edge + width / 2.0,
+        inverse_ramp: 1.0 / width,
+        inverse_r: 1.0 / r,
+    };
+    let level = &surfels.levels[k];
+    SCRATCH.with_borrow_mut(|(reached, queue)| {
+        reached.reset(level.len());
+        queue.clear();
+        let first = surfels.ancestor(start, k);
+        reached.insert(first);
+        queue.push(first);
+        let mut next = 0;
+        while let Some(&s) = queue.get(next) {
+            next += 1;
+            let distance = (level.point[s as usize].position - ball.p).length();
+            if distance >= ball.outer {
+                continue;
+            }
+            for &t in level.neighbours(s) {
+                if reached.insert(t) {
+                    queue.push(t);
+                }
+            }
+            ball.add(&mut stats, &mut counts, level, s, distance, settings);
+        }
+    });
+    (stats, counts)
+}
+
+/// The ball and its ramp, seen from the centre.
+struct Ball {
+    p: DVec3,
+    n: DVec3,
+    /// The ramp's weight falls from 1 one surfel width inside `outer` to 0 at `outer`.
+    outer: f64,
+    /// `1 / width` of the ramp.
+    inverse_ramp: f64,
+    /// `1 / r`.
+    inverse_r: f64,
+}
+
+impl Ball {
+    /// Adds surfel `s` of `level`, at `distance` from the centre, weighed by the ramp.
+    #[inline]
+    fn add(
+        &self,
+        stats: &mut NeighbourhoodStats,
+        counts: &mut SampleCounts,
+        level: &SurfelLevel,
+        s: u32,
+        distance: f64,
+        settings: &SurfelSumSettings,
+    ) {
+        let weight = ((self.outer - distance) * self.inverse_ramp).min(1.0);
+        let SurfelPoint { position, area, spread } = level.point[s as usize];
+        let (area, spread) = (area * weight, spread * weight);
+        if !(area > 0.0) {
+            return;
+        }
+        let StatsSettings { radius: r, rho_min, .. } = settings.stats;
+        counts.valid += 1;
+        counts.border += u32::from(level.on_border[s as usize] && distance < r);
+        let inverse_r = self.inverse_r;
+        let height = self.n.dot(position - self.p);
+        // `dA (n . (q - p))` and `dA |q - p|^2` summed exactly over the surfel.
+        let elevation = area * height;
+        let second = area * distance * distance + spread;
+        // The surfel holding the centre keeps its area (its elevation is 0 there).
+        let inverse_distance = if distance > 1e-6 * r { 1.0 / distance } else { 0.0 };
+        let sin_alpha = height * inverse_distance;
+        // The volumes' weight `dA rho` at the centroid (H's ratio does not read it).
+        let w = area * distance;
+        stats.elevation.add_parts(w, elevation, w * sin_alpha * sin_alpha);
+        stats.radial.add_parts(w, second * inverse_r, second * distance * inverse_r * inverse_r);
+        // The area alone (the area ratio): the surfels serve the Euclidean ball only, never the
+        // geodesic-disk K (`ComputeSettings::validate`).
+        stats.geodesic_disk.add(area, 0.0);
+        if distance >= rho_min {
+            if settings.with_normals {
+                let g = (self.n - level.normal[s as usize]).length_squared() * inverse_distance * inverse_distance;
+                stats.bending.add(area, g);
+            }
+            // `w = dA rho^2 / r^2` and `w g = -2 dA (n . (q - p)) / r^2` are exact; `g = -2
+            // sin(alpha) / rho`, whose square grows as rho^2 like the weight, read at the centroid.
+            let w = second * inverse_r * inverse_r;
+            let k = -2.0 * sin_alpha * inverse_distance;
+            stats.normal_curvature.add_parts(w, -2.0 * elevation * inverse_r * inverse_r, w * k * k);
+        }
+    }
+}
