@@ -25,6 +25,7 @@ __all__ = [
     "paper_options",
     "option_choices_by_name",
     "compute_maps",
+    "vertex_feature_values",
     "neighbourhood_tile_arrays",
     "ReferenceMesh",
 ]
@@ -193,6 +194,9 @@ def option_choices_by_name() -> dict[str, list[str]]:
     """The names each choice option takes, the default first."""
 
 def compute_maps(atlas: Atlas, settings: ComputeSettings) -> FeatureMaps: ...
+def vertex_feature_values(
+    atlas: Atlas, settings: ComputeSettings
+) -> tuple[list[NDArray[np.float32]], NDArray[np.uint32]]: ...
 def neighbourhood_tile_arrays(
     atlas: Atlas, settings: ComputeSettings, start: int, stop: int
 ) -> tuple[

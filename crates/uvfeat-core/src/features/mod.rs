@@ -12,6 +12,7 @@ mod principal_curvatures;
 mod quadric_fit;
 mod shape_index;
 mod statistics;
+mod surfel_sums;
 mod volume_invariant;
 
 pub use bending_energy::bending_energy;
@@ -28,6 +29,7 @@ pub use principal_curvatures::principal_curvatures;
 pub use quadric_fit::{quadric_fit, QuadricFit};
 pub use shape_index::shape_index;
 pub use statistics::{NeighbourhoodStats, StatsSettings, VolumeWeighting, WeightedSums};
+pub use surfel_sums::{surfel_sums, SurfelCentre, SurfelSumSettings, SURFELS};
 pub use volume_invariant::volume_invariant;
 
 use crate::error::{Result, UvfeatError};

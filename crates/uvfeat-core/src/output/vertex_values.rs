@@ -6,8 +6,8 @@ use super::per_vertex::corners;
 use crate::atlas::Atlas;
 use crate::error::{Result, UvfeatError};
 use crate::evaluation::PixelResult;
-use crate::features::CurvatureMethod;
-use crate::sampling::{surfel_sums, Quadrature, SurfelCentre, SurfelSumSettings};
+use crate::features::{surfel_sums, CurvatureMethod, SurfelCentre, SurfelSumSettings};
+use crate::sampling::Quadrature;
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
 

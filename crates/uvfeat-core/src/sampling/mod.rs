@@ -20,7 +20,6 @@ mod sample;
 mod secant_metric;
 mod settings;
 mod sheets;
-mod surfel_sums;
 mod surfels;
 
 pub use centre::{centre_at, texel_point, Centre, TexelPoint};
@@ -36,5 +35,4 @@ pub use reach::{Reach, DIRECTIONS};
 pub use sample::{ramp_centre, Sample, SampleCounts};
 pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
-pub use surfel_sums::{surfel_sums, SurfelCentre, SurfelSumSettings, SURFELS};
-pub use surfels::{gather_surfels, surfel_centre};
+pub use surfels::{gather_surfels, surfel_centre, surfel_level};

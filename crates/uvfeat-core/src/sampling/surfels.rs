@@ -36,14 +36,14 @@ thread_local! {
     static REACHED: RefCell<(Stamps, Vec<u32>)> = RefCell::new((Stamps::new(0), Vec::new()));
 }
 
-/// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about
-/// [`TARGET_SURFELS`] in the ball at the centre's area element.
-fn surfel_level(n_levels: usize, resolution: usize, centre: &Centre, radius: f64) -> usize {
+/// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about `target` in
+/// the ball where a finest surfel is up to `texel_length` long (`sigma_1 / W`).
+pub fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
     // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
     // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
     // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
     // surface) takes a finer level.
-    let scale = resolution as f64 * radius * (std::f64::consts::PI / TARGET_SURFELS).sqrt() / centre.distortion.sigma1;
+    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_length;
     let widest = scale.log2().round();
     (widest.max(0.0) as usize).min(n_levels.saturating_sub(1))
 }
@@ -72,7 +72,8 @@ pub fn gather_surfels(
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
     let surfels = atlas.surfels(settings.surface);
-    let k = surfel_level(surfels.levels.len(), atlas.resolution(), centre, settings.radius);
+    let texel_length = centre.distortion.sigma1 / atlas.resolution() as f64;
+    let k = surfel_level(surfels.levels.len(), texel_length, settings.radius, TARGET_SURFELS);
     let level = &surfels.levels[k];
     let mut counts = SampleCounts::default();
     let Some(start) = start_surfel(atlas, &surfels.levels[0], centre) else { return counts };

@@ -12,10 +12,10 @@
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
 //! and the object-space reference's; a linear ramp one surfel wide weighs a plane's disk exactly.
 
-use super::sample::{ramp_centre, SampleCounts};
+use super::{NeighbourhoodStats, StatsSettings};
 use crate::atlas::Atlas;
-use crate::features::{NeighbourhoodStats, StatsSettings};
-use crate::raster::{Surface, SurfelLevel, SurfelPoint, Surfels};
+use crate::raster::{Surface, SurfelLevel, SurfelPoint};
+use crate::sampling::{ramp_centre, surfel_level, SampleCounts};
 use crate::stamps::Stamps;
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
@@ -62,13 +62,6 @@ pub struct SurfelSumSettings {
     pub with_normals: bool,
 }
 
-/// The level of the pyramid whose surfels put about `target` in the ball, for surfels
-/// `texel_length` long at the finest level.
-fn level_for(surfels: &Surfels, texel_length: f64, radius: f64, target: f64) -> usize {
-    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_length;
-    (scale.log2().round().max(0.0) as usize).min(surfels.levels.len().saturating_sub(1))
-}
-
 /// The sums of the ball's connected part around `centre`, with their sample counts (`valid`:
 /// surfels summed; `border`: those in the ball a mesh border passes through). Empty sums where the
 /// centre's texel holds no surfel of its chart.
@@ -88,7 +81,7 @@ pub fn surfel_sums(
         return (stats, counts);
     };
     let r = settings.stats.radius;
-    let k = level_for(surfels, centre.texel_length, r, SURFELS);
+    let k = surfel_level(surfels.levels.len(), centre.texel_length, r, SURFELS);
     // The ramp: one surfel wide, centred to weigh a disk exactly (as the flat quadrature's).
     let width = (centre.texel_side * (1u64 << k) as f64).min(0.5 * r);
     let edge = r * ramp_centre(width / r);
