@@ -1,0 +1,95 @@
+"""Per-vertex H and K on real scans, as a user gets them: error against the converged reference and
+time of each method, from a loaded mesh with a cached automatic atlas.
+
+    .venv/bin/python benches/bench_scan_vertices.py [--meshes armadillo.obj dragon.obj stanford-bunny.obj]
+        [--radii 1 2 4 8] [--methods default vertices reference] [--probe 1000] [--repeats 3]
+        [--resolution 512]
+
+Methods: `default` is `uvfeat.compute` with its defaults; `vertices` is `uvfeat.compute` with
+`quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
+maps; `vertices/smooth` on the smooth surface); `reference` is `uvfeat.reference.compute`. Each
+call is timed end to end (atlas buffers, features, per-vertex values); the methods of a cell run in
+turns `--repeats` times and the table keeps the median. The truth is `uvfeat.converged_reference`
+at `--probe` random vertices (two levels at most), cached under uvfeat-out/bench-cache. Errors
+are %AE: mean |value - truth| over the truth's Q1-Q99 range, in percent.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import pathlib
+import time
+import warnings
+
+import numpy as np
+
+import uvfeat
+
+FEATURES = ["mean_curvature", "gaussian_curvature"]
+CACHE = pathlib.Path("uvfeat-out/bench-cache")
+
+
+def percent_error(values: np.ndarray, truth: np.ndarray) -> float:
+    spread = np.nanpercentile(truth, 99) - np.nanpercentile(truth, 1)
+    return float(100 * np.nanmean(np.abs(values - truth)) / spread)
+
+
+def truth(mesh: uvfeat.Mesh, name: str, radius: str, probe: np.ndarray) -> dict[str, np.ndarray]:
+    path = CACHE / f"{name}-{radius.rstrip('%')}pc-{len(probe)}.npz"
+    if path.exists():
+        return dict(np.load(path))
+    values = uvfeat.converged_reference(mesh, FEATURES, radius, vertices=probe, max_levels=2).values
+    CACHE.mkdir(parents=True, exist_ok=True)
+    np.savez(path, **values)
+    return values
+
+
+def method(name: str, resolution: int):
+    if name == "reference":
+        return lambda mesh, radius: uvfeat.reference.compute(mesh, FEATURES, radius=radius)
+    if name == "default":
+        return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius)
+    surface = name.partition("/")[2] or "facets"
+    return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius, resolution=resolution,
+                                               quadrature="surfels", surface=surface)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--meshes", nargs="+", default=["armadillo.obj", "dragon.obj", "stanford-bunny.obj"])
+    parser.add_argument("--radii", nargs="+", type=float, default=[1, 2, 4, 8])
+    parser.add_argument("--methods", nargs="+", default=["default", "vertices", "reference"])
+    parser.add_argument("--probe", type=int, default=1000)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--resolution", type=int, default=512, help="atlas resolution of the 'vertices' methods")
+    args = parser.parse_args()
+    warnings.simplefilter("ignore", uvfeat.NeighbourhoodWarning)
+    folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", "../shared/meshes"))
+    print(f"{os.cpu_count()} cores; median of {args.repeats} calls in turns; %AE against the converged reference")
+    print("| mesh (faces, charts) | r | " + " | ".join(f"{m}: H / K %AE, s" for m in args.methods) + " |")
+    print("|---|---|" + "---|" * len(args.methods))
+    for file in args.meshes:
+        mesh = uvfeat.load(str(folder / file))
+        if not mesh.has_uvs:
+            mesh = mesh.with_atlas()
+        probe = np.sort(np.random.default_rng(0).choice(mesh.n_vertices, min(args.probe, mesh.n_vertices),
+                                                        replace=False))
+        for r in args.radii:
+            radius = f"{r:g}%"
+            expected = truth(mesh, pathlib.Path(file).stem, radius, probe)
+            runs = {m: [] for m in args.methods}
+            values = {}
+            for _ in range(args.repeats):
+                for m in args.methods:
+                    started = time.perf_counter()
+                    values[m] = method(m, args.resolution)(mesh, radius)
+                    runs[m].append(time.perf_counter() - started)
+            cells = [" / ".join(f"{percent_error(values[m][f][probe], expected[f]):.2f}" for f in FEATURES)
+                     + f", {np.median(runs[m]):.3f}" for m in args.methods]
+            print(f"| {file} ({mesh.n_faces // 1000}K, {mesh.n_charts}) | {radius} | " + " | ".join(cells) + " |",
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()
