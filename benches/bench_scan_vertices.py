@@ -7,7 +7,8 @@ time of each method, from a loaded mesh with a cached automatic atlas.
 
 Methods: `default` is `uvfeat.compute` with its defaults; `vertices` is `uvfeat.compute` with
 `quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
-maps; `vertices/smooth` on the smooth surface); `reference` is `uvfeat.reference.compute`. Each
+maps; `vertices/smooth` on the smooth surface, `vertices@1024` with 1024² buffers instead of
+`--resolution`); `reference` is `uvfeat.reference.compute`. Each
 call is timed end to end (atlas buffers, features, per-vertex values); the methods of a cell run in
 turns `--repeats` times and the table keeps the median. The truth is `uvfeat.converged_reference`
 at `--probe` random vertices (two levels at most), cached under uvfeat-out/bench-cache. Errors
@@ -50,6 +51,8 @@ def method(name: str, resolution: int):
         return lambda mesh, radius: uvfeat.reference.compute(mesh, FEATURES, radius=radius)
     if name == "default":
         return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius)
+    name, _, size = name.partition("@")
+    resolution = int(size) if size else resolution
     surface = name.partition("/")[2] or "facets"
     return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius, resolution=resolution,
                                                quadrature="surfels", surface=surface)
