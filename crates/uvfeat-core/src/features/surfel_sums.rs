@@ -102,10 +102,12 @@ pub fn surfel_sums(
         let mut next = 0;
         while let Some(&s) = queue.get(next) {
             next += 1;
-            let distance = (level.point[s as usize].position - ball.p).length();
-            if distance >= ball.outer {
+            // The ring just outside the ball is a third of the surfels reached: no root for them.
+            let distance2 = (level.point[s as usize].position - ball.p).length_squared();
+            if distance2 >= ball.outer * ball.outer {
                 continue;
             }
+            let distance = distance2.sqrt();
             for &t in level.neighbours(s) {
                 if reached.insert(t) {
                     queue.push(t);
