@@ -9,8 +9,8 @@ Methods: `default` is `uvfeat.compute` with its defaults; `vertices` is `uvfeat.
 `quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
 maps; `vertices/smooth` on the smooth surface, `vertices@1024` with 1024² buffers instead of
 `--resolution`); `reference` is `uvfeat.reference.compute`. Each
-call is timed end to end (atlas buffers, features, per-vertex values); the methods of a cell run in
-turns `--repeats` times and the table keeps the median. The truth is `uvfeat.converged_reference`
+call is timed end to end (atlas buffers, features, per-vertex values); the methods of a cell alternate
+`--repeats` times and the table keeps the median. The truth is `uvfeat.converged_reference`
 at `--probe` random vertices (two levels at most), cached under uvfeat-out/bench-cache. Errors
 are %AE: mean |value - truth| over the truth's Q1-Q99 range, in percent.
 """
@@ -69,7 +69,7 @@ def main() -> None:
     args = parser.parse_args()
     warnings.simplefilter("ignore", uvfeat.NeighbourhoodWarning)
     folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", "../shared/meshes"))
-    print(f"{os.cpu_count()} cores; median of {args.repeats} calls in turns; %AE against the converged reference")
+    print(f"{os.cpu_count()} cores; median of {args.repeats} alternating calls; %AE against the converged reference")
     print("| mesh (faces, charts) | r | " + " | ".join(f"{m}: H / K %AE, s" for m in args.methods) + " |")
     print("|---|---|" + "---|" * len(args.methods))
     for file in args.meshes:
