@@ -61,13 +61,15 @@ def test_one_shot_and_atlas_agree_and_radius_lists_stack():
         np.testing.assert_array_equal(shot[name], one[name])
 
 
-def test_values_at_the_vertices_agree_with_the_flat_surfels_read_directly():
+def test_the_direct_query_is_the_values_at_the_vertices_and_the_texture_agrees():
     atlas = uvfeat.Atlas(bumpy_sphere(), resolution=512)
     at_vertices = atlas.per_vertex(HK, "4%", **SURFELS)
-    maps = atlas.compute(HK, "4%", compute_resolution=8, **SURFELS)
+    maps = atlas.compute(HK, "4%", compute_resolution=512, **SURFELS)
     for name in HK:
-        direct = maps[name].per_vertex(query="direct")
-        assert range_normalised_error(at_vertices[name], direct) < 0.004, name
+        np.testing.assert_array_equal(maps[name].per_vertex(query="direct"), at_vertices[name])
+        # The texture read at the vertices: measured 0.33 % (H) and 0.35 % (K) of the range away.
+        error = range_normalised_error(maps[name].per_vertex(query="texture"), at_vertices[name])
+        assert error < 0.006, (name, error)
 
 
 def test_the_pattern_still_reads_its_maps():

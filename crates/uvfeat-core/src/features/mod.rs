@@ -29,7 +29,7 @@ pub use principal_curvatures::principal_curvatures;
 pub use quadric_fit::{quadric_fit, QuadricFit};
 pub use shape_index::shape_index;
 pub use statistics::{NeighbourhoodStats, StatsSettings, VolumeWeighting, WeightedSums};
-pub use surfel_sums::{surfel_sums, SurfelCentre, SurfelSumSettings, SURFELS};
+pub use surfel_sums::{surfel_sums, SurfelCentre, SurfelSumSettings};
 pub use volume_invariant::volume_invariant;
 
 use crate::error::{Result, UvfeatError};

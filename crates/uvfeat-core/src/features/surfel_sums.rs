@@ -5,8 +5,7 @@
 //! H reads two moments, `dA (q - p)` (its numerator), which a surfel's area and centroid give
 //! exactly, and `dA |q - p|^2` (its denominator), which the surfel's spread about its centroid
 //! adds exactly (`area |c - p|^2 + spread`). K's moments and the volumes' `dA rho` are read at the
-//! centroid. Summed this way a ball needs fewer surfels for the same accuracy ([`SURFELS`] against
-//! the flat quadrature's 512).
+//! centroid. The level is the flat quadrature's (about [`TARGET_SURFELS`] in a plane's ball).
 //!
 //! The search runs over the level's adjacency from the centre's surfel while the centroids are
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
@@ -15,15 +14,10 @@
 use super::{NeighbourhoodStats, StatsSettings};
 use crate::atlas::Atlas;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
-use crate::sampling::{ramp_centre, surfel_level, SampleCounts};
+use crate::sampling::{ramp_centre, surfel_level, SampleCounts, TARGET_SURFELS};
 use crate::stamps::Stamps;
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
-
-/// Surfels a plane's ball holds at the level summed. On the shared scans at r = 1-8 % this keeps
-/// H and K within 0.3 % of the converged reference's range where the atlas resolution allows the
-/// level (docs/BENCHMARKS.md); 128 doubled K's error at 8 %, 512 cost 1.6x the time.
-pub const SURFELS: f64 = 256.0;
 
 thread_local! {
     /// Per thread: the surfels reached and the search's queue.
@@ -81,7 +75,7 @@ pub fn surfel_sums(
         return (stats, counts);
     };
     let r = settings.stats.radius;
-    let k = surfel_level(surfels.levels.len(), centre.texel_length, r, SURFELS);
+    let k = surfel_level(surfels.levels.len(), centre.texel_length, r, TARGET_SURFELS);
     // The ramp: one surfel wide, centred to weigh a disk exactly (as the flat quadrature's).
     let width = (centre.texel_side * (1u64 << k) as f64).min(0.5 * r);
     let edge = r * ramp_centre(width / r);

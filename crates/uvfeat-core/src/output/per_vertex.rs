@@ -2,6 +2,7 @@
 //! UV of a vertex, averaged over its corners; direct evaluation where no texel is usable.
 
 use super::feature_map::FeatureMaps;
+use super::vertex_values::{sums_apply, vertex_values};
 use crate::atlas::Atlas;
 use crate::evaluation::{evaluate_point, prepare, Patterns};
 use crate::features::CurvatureMethod;
@@ -131,8 +132,14 @@ impl CornerMeans {
 }
 
 /// Per-vertex values of every map, one `Vec` per feature with one value per *input* vertex
-/// (vertices the file split at seams get the value of their welded vertex).
+/// (vertices the file split at seams get the value of their welded vertex). The direct query of
+/// the surfels' integral estimators sums their moments at the vertices ([`vertex_values`]).
 pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
+    if query == VertexQuery::Direct && sums_apply(settings) {
+        if let Ok((values, _)) = vertex_values(atlas, settings) {
+            return values;
+        }
+    }
     let (offsets, corners) = corners(atlas);
     let patterns = Patterns::new(settings);
     prepare(atlas, settings);

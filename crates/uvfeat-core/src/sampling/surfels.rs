@@ -29,7 +29,7 @@ use std::cell::RefCell;
 
 /// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level). At 512
 /// the quadrature's error is a few tenths of a percent of H's range on the shared scans.
-const TARGET_SURFELS: f64 = 512.0;
+pub const TARGET_SURFELS: f64 = 512.0;
 
 thread_local! {
     /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
