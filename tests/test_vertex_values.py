@@ -87,3 +87,12 @@ def test_the_shared_armadillo_agrees_with_the_converged_reference(shared_mesh, r
     values = uvfeat.compute(mesh, HK, radius, resolution=512, **SURFELS)
     for name in HK:
         assert range_normalised_error(values[name][rows], truth[name]) < 0.01, name
+
+
+def test_a_vertex_on_no_face_is_nan_and_the_others_are_not():
+    s = uvfeat.shapes.torus(2.0, 0.5, 64, 32)
+    positions = np.vstack([s.positions, [[9.0, 9.0, 9.0]]])
+    mesh = uvfeat.Mesh(positions, s.faces, s.uvs, s.uv_faces)
+    values = uvfeat.compute(mesh, HK, 0.3, resolution=256, **SURFELS)
+    for name in HK:
+        assert np.isnan(values[name][-1]) and np.isfinite(values[name][:-1]).all(), name
