@@ -3,8 +3,8 @@
 
 use crate::atlas::Atlas;
 use crate::features::{
-    estimate, fit_relative_error, quadric_fit, relative_standard_error, CurvatureMethod, Feature, NeighbourhoodStats,
-    QuadricFit,
+    estimate, fit_relative_error, quadric_fit, relative_standard_error, surfel_sums, CurvatureMethod, Feature,
+    NeighbourhoodStats, QuadricFit, SurfelCentre,
 };
 use crate::lookup::Lookup;
 use crate::sampling::{
@@ -122,6 +122,23 @@ pub fn evaluate_point(
     let sampler = settings.sampler();
     if settings.quadrature == Quadrature::Surfels {
         let Some(centre) = surfel_centre(atlas, &centre, settings.surface) else { return PixelResult::EMPTY };
+        if settings.method == CurvatureMethod::Integral {
+            // The integral estimators read sums, which the surfels' moments give (exactly for H).
+            let at = SurfelCentre::new(
+                centre.position,
+                centre.normal,
+                centre.uv,
+                centre.chart,
+                &centre.distortion,
+                atlas.resolution(),
+            );
+            let (stats, counts) = surfel_sums(atlas, &at, &settings.surfel_sums());
+            return if counts.valid == 0 {
+                PixelResult::EMPTY
+            } else {
+                PixelResult::estimated(&stats, None, counts, settings)
+            };
+        }
         scratch.clear();
         let counts = gather_surfels(atlas, &centre, &sampler, scratch);
         return surfel_result(settings, &centre, counts, scratch);

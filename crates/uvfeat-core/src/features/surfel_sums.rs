@@ -13,6 +13,7 @@
 
 use super::{NeighbourhoodStats, StatsSettings};
 use crate::atlas::Atlas;
+use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
 use crate::sampling::{ramp_centre, surfel_level, SampleCounts, TARGET_SURFELS};
 use crate::stamps::Stamps;
@@ -43,6 +44,29 @@ pub struct SurfelCentre {
     /// Object length of one texel's side for its area: `sqrt(sigma_1 sigma_2) / W` (the ramp's
     /// width, as the flat quadrature's).
     pub texel_side: f64,
+}
+
+impl SurfelCentre {
+    /// The centre at `position` with unit `normal`, at `uv` of `chart`, where the atlas of
+    /// `resolution`² texels has the sampler's metric `distortion`.
+    pub fn new(
+        position: DVec3,
+        normal: DVec3,
+        uv: DVec2,
+        chart: i32,
+        distortion: &Distortion,
+        resolution: usize,
+    ) -> Self {
+        let w = resolution as f64;
+        Self {
+            position,
+            normal,
+            uv,
+            chart,
+            texel_length: distortion.sigma1 / w,
+            texel_side: distortion.area_element().sqrt() / w,
+        }
+    }
 }
 
 /// What the sums read besides the centre.

@@ -2,6 +2,7 @@
 //! per-vertex values, the neighbourhood samples of texel tiles for user-defined operators, and the
 //! shaded pictures of per-vertex values on the mesh (the 3D pictures).
 
+mod corners;
 mod feature_map;
 mod front_side;
 mod neighbourhood_tiles;

@@ -2,11 +2,11 @@
 //! the centre of its own neighbourhood, whose surfels' moments are summed (DESIGN.md §1.4.9), with
 //! no feature map in between (`Atlas.per_vertex` and `uvfeat.compute` with the surfels).
 
-use super::per_vertex::corners;
+use super::corners::corners;
 use crate::atlas::Atlas;
 use crate::error::{Result, UvfeatError};
 use crate::evaluation::PixelResult;
-use crate::features::{surfel_sums, CurvatureMethod, SurfelCentre, SurfelSumSettings};
+use crate::features::{surfel_sums, CurvatureMethod, SurfelCentre};
 use crate::sampling::Quadrature;
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
@@ -34,13 +34,8 @@ pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<(Vec<V
         });
     }
     let (offsets, corners) = corners(atlas);
-    let sum_settings = SurfelSumSettings {
-        stats: settings.stats(),
-        surface: settings.surface,
-        with_normals: settings.sampler().with_normals,
-    };
+    let sum_settings = settings.surfel_sums();
     let frame = &atlas.frame;
-    let resolution = atlas.resolution() as f64;
     atlas.surfels(settings.surface);
     let first_corner = |vertex: usize| corners.get(offsets[vertex]..offsets[vertex + 1]).and_then(|c| c.first());
     // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
@@ -62,14 +57,8 @@ pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<(Vec<V
                 return PixelResult::EMPTY;
             };
             let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
-            let centre = SurfelCentre {
-                position: frame.positions[vertex],
-                normal: frame.normals[vertex],
-                uv: corner.uv,
-                chart: corner.chart,
-                texel_length: distortion.sigma1 / resolution,
-                texel_side: distortion.area_element().sqrt() / resolution,
-            };
+            let (position, normal) = (frame.positions[vertex], frame.normals[vertex]);
+            let centre = SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution());
             let (stats, counts) = surfel_sums(atlas, &centre, &sum_settings);
             if counts.valid == 0 {
                 return PixelResult::EMPTY;

@@ -2,7 +2,9 @@
 
 use crate::atlas::MAX_RESOLUTION;
 use crate::error::{Result, UvfeatError};
-use crate::features::{CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, VolumeWeighting};
+use crate::features::{
+    CurvatureMethod, EstimatorSettings, Feature, GaussianMethod, StatsSettings, SurfelSumSettings, VolumeWeighting,
+};
 use crate::lookup::Lookup;
 use crate::raster::Surface;
 use crate::relocation::Relocation;
@@ -176,6 +178,11 @@ impl ComputeSettings {
             rho_min: self.rho_min_fraction * self.radius,
             volume_weighting: self.volume_weighting,
         }
+    }
+
+    /// What the surfels' moment sums read (DESIGN.md §1.4.9).
+    pub fn surfel_sums(&self) -> SurfelSumSettings {
+        SurfelSumSettings { stats: self.stats(), surface: self.surface, with_normals: self.sampler().with_normals }
     }
 
     /// Estimator part of the settings.
