@@ -91,8 +91,10 @@ def test_same_results_with_one_and_two_threads(tmp_path):
     script = (
         "import sys, numpy as np, uvfeat\n"
         "m = uvfeat.shapes.torus(2.0, 0.5, 64, 32)\n"
-        "maps = uvfeat.Atlas(m, 256).compute(['mean_curvature', 'k1'], 0.3, compute_resolution=64, quadrature='surfels')\n"
-        "np.save(sys.argv[1], np.stack([f.texture for f in maps.values()]))\n"
+        "atlas = uvfeat.Atlas(m, 256)\n"
+        "maps = atlas.compute(['mean_curvature', 'k1'], 0.3, compute_resolution=64, quadrature='surfels')\n"
+        "at_vertices = atlas.per_vertex(['mean_curvature', 'k1'], 0.3, quadrature='surfels')\n"
+        "np.save(sys.argv[1], np.concatenate([f.texture.ravel() for f in maps.values()] + list(at_vertices.values())))\n"
     )
     outputs = []
     for threads in ("1", "2"):
