@@ -63,8 +63,8 @@ pub(super) type SeamPoints = ((DVec2, i32), (DVec2, i32));
 const BAND_ROWS: usize = 16;
 
 /// The surfels of a `width`² grid: every face's pieces summed per texel and chart, in texel order
-/// (then chart), band by band in parallel. Within a band the pieces are summed in face order, so
-/// the sums do not depend on the thread count.
+/// (then chart), band by band in parallel. A band's pieces are listed in face order and sorted by
+/// one thread, so the order they are summed in, and the sums, do not depend on the thread count.
 pub(super) fn texel_sums(topology: &Topology, frame: &Frame, width: usize, smooth: bool) -> Vec<Fragment> {
     let bands = width.div_ceil(BAND_ROWS);
     let rows: Vec<Option<(usize, usize)>> =
@@ -94,7 +94,9 @@ pub(super) fn texel_sums(topology: &Topology, frame: &Frame, width: usize, smoot
             for &f in &faces[first[band]..first[band + 1]] {
                 face_fragments(topology, frame, f as usize, width, smooth, rows.clone(), &mut pieces);
             }
-            pieces.sort_by_key(|p| (p.texel, p.chart));
+            // Unstable: a quarter of the texel sums' time less than the stable sort (12-20 of 66-81 ms
+            // on the dragon at 512²).
+            pieces.sort_unstable_by_key(|p| (p.texel, p.chart));
             let mut sums: Vec<Fragment> = Vec::new();
             for piece in pieces {
                 match sums.last_mut() {

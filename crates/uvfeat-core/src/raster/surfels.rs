@@ -233,9 +233,14 @@ impl SurfelLevel {
             self.parent[s as usize] = o;
             next.on_border[o as usize] |= self.on_border[s as usize];
         }
-        let pairs = (0..self.len())
-            .flat_map(|s| self.neighbours(s as u32).iter().map(move |&t| (s, t as usize)))
-            .map(|(s, t)| (self.parent[s], self.parent[t]))
+        // Each link once (adjacency lists hold both directions) and only between parents: a
+        // quarter of the pairs to sort (level 0 -> 1 of the 100K-face dragon at 512²: 41-49 ms before).
+        let parent = &self.parent;
+        let pairs = (0..self.len() as u32)
+            .into_par_iter()
+            .flat_map_iter(|s| self.neighbours(s).iter().filter(move |&&t| s < t).map(move |&t| (s, t)))
+            .map(|(s, t)| (parent[s as usize], parent[t as usize]))
+            .filter(|(a, b)| a != b)
             .collect();
         next.set_adjacency(pairs);
         next
