@@ -1,7 +1,8 @@
 """Per-vertex H and K on real scans, as a user gets them: error against the converged reference and
 time of each method, from a loaded mesh with a cached automatic atlas.
 
-    .venv/bin/python benches/bench_scan_vertices.py [--meshes armadillo.obj dragon.obj stanford-bunny.obj]
+    .venv/bin/python benches/bench_scan_vertices.py [--meshes armadillo.obj dragon.obj stanford-bunny.obj
+        spot_triangulated.obj bob_tri.obj]
         [--radii 1 2 4 8] [--methods default vertices reference] [--probe 1000] [--repeats 3]
         [--resolution 512]
 
@@ -36,14 +37,16 @@ def percent_error(values: np.ndarray, truth: np.ndarray) -> float:
     return float(100 * np.nanmean(np.abs(values - truth)) / spread)
 
 
-def truth(mesh: uvfeat.Mesh, name: str, radius: str, probe: np.ndarray) -> dict[str, np.ndarray]:
-    path = CACHE / f"{name}-{radius.rstrip('%')}pc-{len(probe)}.npz"
-    if path.exists():
-        return dict(np.load(path))
-    values = uvfeat.converged_reference(mesh, FEATURES, radius, vertices=probe, max_levels=2).values
-    CACHE.mkdir(parents=True, exist_ok=True)
-    np.savez(path, **values)
-    return values
+def truth(mesh: uvfeat.Mesh, name: str, radius: str, probe: np.ndarray) -> tuple[dict[str, np.ndarray], str]:
+    """The converged values at `probe` and a note of their level and last change (%)."""
+    path = CACHE / f"{name}-{radius.rstrip('%')}pc-{len(probe)}-converged.npz"
+    if not path.exists():
+        result = uvfeat.converged_reference(mesh, FEATURES, radius, vertices=probe, max_levels=3)
+        change = max(result.changes[-1].values()) if result.changes else float("nan")
+        CACHE.mkdir(parents=True, exist_ok=True)
+        np.savez(path, level=result.level, change=change, **result.values)
+    stored = dict(np.load(path))
+    return {f: stored[f] for f in FEATURES}, f"{int(stored['level'])} ({float(stored['change']):.2f})"
 
 
 def method(name: str, resolution: int):
@@ -60,18 +63,20 @@ def method(name: str, resolution: int):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--meshes", nargs="+", default=["armadillo.obj", "dragon.obj", "stanford-bunny.obj"])
+    parser.add_argument("--meshes", nargs="+", default=["armadillo.obj", "dragon.obj", "stanford-bunny.obj",
+                                                         "spot_triangulated.obj", "bob_tri.obj"])
     parser.add_argument("--radii", nargs="+", type=float, default=[1, 2, 4, 8])
     parser.add_argument("--methods", nargs="+", default=["default", "vertices", "reference"])
     parser.add_argument("--probe", type=int, default=1000)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--resolution", type=int, default=512, help="atlas resolution of the 'vertices' methods")
     args = parser.parse_args()
-    warnings.simplefilter("ignore", uvfeat.NeighbourhoodWarning)
+    warnings.simplefilter("ignore")
     folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", "../shared/meshes"))
     print(f"{os.cpu_count()} cores; median of {args.repeats} alternating calls; %AE against the converged reference")
-    print("| mesh (faces, charts) | r | " + " | ".join(f"{m}: H / K %AE, s" for m in args.methods) + " |")
-    print("|---|---|" + "---|" * len(args.methods))
+    print("| mesh (faces, charts) | r | truth level (last change %) | "
+          + " | ".join(f"{m}: H / K %AE, s" for m in args.methods) + " |")
+    print("|---|---|---|" + "---|" * len(args.methods))
     for file in args.meshes:
         mesh = uvfeat.load(str(folder / file))
         if not mesh.has_uvs:
@@ -80,7 +85,7 @@ def main() -> None:
                                                         replace=False))
         for r in args.radii:
             radius = f"{r:g}%"
-            expected = truth(mesh, pathlib.Path(file).stem, radius, probe)
+            expected, level = truth(mesh, pathlib.Path(file).stem, radius, probe)
             runs = {m: [] for m in args.methods}
             values = {}
             for _ in range(args.repeats):
@@ -90,8 +95,8 @@ def main() -> None:
                     runs[m].append(time.perf_counter() - started)
             cells = [" / ".join(f"{percent_error(values[m][f][probe], expected[f]):.2f}" for f in FEATURES)
                      + f", {np.median(runs[m]):.3f}" for m in args.methods]
-            print(f"| {file} ({mesh.n_faces // 1000}K, {mesh.n_charts}) | {radius} | " + " | ".join(cells) + " |",
-                  flush=True)
+            print(f"| {file} ({mesh.n_faces // 1000}K, {mesh.n_charts}) | {radius} | {level} | " + " | ".join(cells)
+                  + " |", flush=True)
 
 
 if __name__ == "__main__":
