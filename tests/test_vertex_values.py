@@ -96,3 +96,13 @@ def test_a_vertex_on_no_face_is_nan_and_the_others_are_not():
     values = uvfeat.compute(mesh, HK, 0.3, resolution=256, **SURFELS)
     for name in HK:
         assert np.isnan(values[name][-1]) and np.isfinite(values[name][:-1]).all(), name
+
+
+def test_neighbourhoods_cut_by_a_border_are_named_in_a_warning():
+    plane = uvfeat.shapes.plane(1.0, 48)
+    with pytest.warns(uvfeat.NeighbourhoodWarning, match="cut by a mesh border") as caught:
+        values = uvfeat.Atlas(plane, resolution=256).per_vertex("mean_curvature", 0.1, **SURFELS)
+    # The band within r of the square's edges: 1 - 0.8^2 = 36 % of its area.
+    share = float(caught[0].message.args[0].split("(")[1].split(" %")[0])
+    assert 25 < share < 50, share
+    assert np.nanmax(np.abs(values["mean_curvature"])) < 1e-3  # a plane is flat, border or not

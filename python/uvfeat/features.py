@@ -216,10 +216,17 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     stack = isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
     resolution = check_resolution(compute_resolution, "compute_resolution")
-    per_radius = []
+    per_radius, texts = [], []
     for r in (radius if stack else [radius]):
         settings = _core_settings(names, resolve_radius(r, diagonal), samples, resolution, adaptive, seed, opts)
-        per_radius.append(_core.vertex_feature_values(atlas._core, settings)[0])
+        values, _, border = _core.vertex_feature_values(atlas._core, settings)
+        per_radius.append(values)
+        # The sums say where a border cuts the ball; the other flags read the maps' samples.
+        counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
+        texts += notes(counts, atlas.mesh.n_vertices,
+                       r if isinstance(r, str) else f"{r:.4g}")
+    if texts:
+        warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=3)
     return {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
 
 

@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use uvfeat_core::output::{
     neighbourhood_tile, per_corner, per_vertex, per_vertex_directions, vertex_values, FeatureMaps,
 };
+use uvfeat_core::sampling::SampleCounts;
 use uvfeat_core::settings::{ComputeSettings, VertexQuery};
 
 /// UVs and geometric vertices of the atlas corners, and one array of values per feature.
@@ -170,8 +171,9 @@ pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> P
     Ok(PyFeatureMaps { inner, settings: settings.inner.clone() })
 }
 
-/// One array of values per feature, and the surfels each vertex summed.
-type VertexArrays<'py> = (Vec<Bound<'py, PyArrayDyn<f32>>>, Bound<'py, PyArrayDyn<u32>>);
+/// One array of values per feature, the surfels each vertex summed, and those of them a mesh
+/// border passes through.
+type VertexArrays<'py> = (Vec<Bound<'py, PyArrayDyn<f32>>>, Bound<'py, PyArrayDyn<u32>>, Bound<'py, PyArrayDyn<u32>>);
 
 /// Every feature at every input vertex, evaluated at the vertices from the surfels' moments (GIL
 /// released, parallel).
@@ -182,10 +184,11 @@ pub fn vertex_feature_values<'py>(
     settings: &PySettings,
 ) -> PyResult<VertexArrays<'py>> {
     let (core, s) = (atlas.core(), &settings.inner);
-    let (values, summed) = guarded(py, || vertex_values(core, s))?;
-    let n = summed.len();
-    let arrays = values.into_iter().map(|v| to_numpy(py, v, &[n])).collect::<PyResult<_>>()?;
-    Ok((arrays, to_numpy(py, summed, &[n])?))
+    let at_vertices = guarded(py, || vertex_values(core, s))?;
+    let n = at_vertices.counts.len();
+    let arrays = at_vertices.values.into_iter().map(|v| to_numpy(py, v, &[n])).collect::<PyResult<_>>()?;
+    let count = |get: fn(&SampleCounts) -> u32| to_numpy(py, at_vertices.counts.iter().map(get).collect(), &[n]);
+    Ok((arrays, count(|c| c.valid)?, count(|c| c.border)?))
 }
 
 type TileArrays<'py> = (

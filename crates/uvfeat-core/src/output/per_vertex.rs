@@ -97,8 +97,8 @@ impl CornerMeans {
 /// the surfels' integral estimators sums their moments at the vertices ([`vertex_values`]).
 pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
     if query == VertexQuery::Direct && sums_apply(settings) {
-        if let Ok((values, _)) = vertex_values(atlas, settings) {
-            return values;
+        if let Ok(at_vertices) = vertex_values(atlas, settings) {
+            return at_vertices.values;
         }
     }
     let (offsets, corners) = corners(atlas);

@@ -7,9 +7,19 @@ use crate::atlas::Atlas;
 use crate::error::{Result, UvfeatError};
 use crate::evaluation::PixelResult;
 use crate::features::{surfel_sums, CurvatureMethod, SurfelCentre};
-use crate::sampling::Quadrature;
+use crate::sampling::{Quadrature, SampleCounts};
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
+
+/// Values at every input vertex.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VertexValues {
+    /// One `Vec` per feature, one value per input vertex.
+    pub values: Vec<Vec<f32>>,
+    /// Per input vertex: surfels summed (`valid`) and those of them inside the ball that a mesh
+    /// border passes through (`border`: the neighbourhood is truncated).
+    pub counts: Vec<SampleCounts>,
+}
 
 /// Whether `settings` can be evaluated from the surfels' moments: the surfel quadrature's integral
 /// estimators (the quadric fit needs every sample, not sums).
@@ -19,12 +29,12 @@ pub fn sums_apply(settings: &ComputeSettings) -> bool {
 
 /// Every feature of `settings` at every *input* vertex (one `Vec` per feature, in the order of
 /// `settings.features`; vertices the file split at seams share their welded vertex's value; NaN
-/// where a vertex is on no chart), with each vertex's summed surfels.
+/// where a vertex is on no chart), with each vertex's counts.
 ///
 /// # Errors
 /// [`UvfeatError::InvalidParameter`] for settings that fail validation or that the sums do not
 /// serve ([`sums_apply`]).
-pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<(Vec<Vec<f32>>, Vec<u32>)> {
+pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<VertexValues> {
     settings.validate()?;
     if !sums_apply(settings) {
         return Err(UvfeatError::InvalidParameter {
@@ -76,7 +86,7 @@ pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<(Vec<V
         .iter()
         .map(|f| ids.iter().map(|&g| results[g as usize].values[f.index()]).collect())
         .collect();
-    Ok((values, ids.iter().map(|&g| results[g as usize].counts.valid).collect()))
+    Ok(VertexValues { values, counts: ids.iter().map(|&g| results[g as usize].counts).collect() })
 }
 
 /// Position of texel-space point `uv` along a Z (Morton) curve over a `resolution`² grid.

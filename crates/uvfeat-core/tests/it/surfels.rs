@@ -3,7 +3,7 @@
 use crate::support::{atlas, errors, median, patchwork_sphere, unit_sphere};
 use uvfeat_core::evaluation::{evaluate_point, Patterns};
 use uvfeat_core::features::Feature;
-use uvfeat_core::output::{per_vertex, vertex_values, FeatureMaps};
+use uvfeat_core::output::{per_vertex, vertex_values, FeatureMaps, VertexValues};
 use uvfeat_core::raster::Surface;
 use uvfeat_core::sampling::Placement;
 use uvfeat_core::sampling::Quadrature;
@@ -38,11 +38,12 @@ fn values_at_the_vertices_meet_the_analytic_sphere_across_rotated_seams() {
     for (surface, [h_bound, k_bound]) in [(Surface::Smooth, [0.002, 0.012]), (Surface::Facets, [0.015, 0.035])] {
         let mut s = settings(0.5);
         s.surface = surface;
-        let (values, summed) = vertex_values(&atlas, &s).unwrap();
+        let VertexValues { values, counts } = vertex_values(&atlas, &s).unwrap();
         let [h, k] = vertex_errors(&values);
         // A wrong factor or sign would be far outside.
         assert!(h < h_bound && k < k_bound, "{surface:?}: H {h}, K {k}");
-        assert!(summed.iter().all(|&n| n > 100), "{:?}", summed.iter().min());
+        // A closed sphere: every ball holds its surfels, and none is cut by a border.
+        assert!(counts.iter().all(|c| c.valid > 100 && c.border == 0), "{:?}", counts.iter().min_by_key(|c| c.valid));
     }
 }
 
@@ -51,7 +52,7 @@ fn values_at_the_vertices_agree_with_the_flat_surfels_and_need_them() {
     let atlas = atlas(&patchwork_sphere(4), 512);
     let mut s = settings(0.3);
     s.surface = Surface::Facets;
-    let (at_vertices, _) = vertex_values(&atlas, &s).unwrap();
+    let at_vertices = vertex_values(&atlas, &s).unwrap().values;
     // The flat quadrature at one corner UV of each vertex, through the general evaluation.
     let topology = &atlas.topology;
     let mut corner_uv = vec![None; topology.n_geometric()];
