@@ -50,7 +50,7 @@ pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<Vertex
     let first_corner = |vertex: usize| corners.get(offsets[vertex]..offsets[vertex + 1]).and_then(|c| c.first());
     // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
     // in turn share most of their surfels, which then come from the cache (the search is bound by
-    // memory latency: in the file's order the armadillo took 1.9x as long).
+    // memory latency: in the file's order the armadillo took 1.5-1.9x as long).
     let mut order: Vec<(u64, u32)> = (0..offsets.len() - 1)
         .into_par_iter()
         .map(|vertex| {
