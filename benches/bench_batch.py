@@ -1,4 +1,4 @@
-"""Benchmark of ``uvfeat batch`` (issue 14): meshes per minute on a local Dask cluster of 1 and 2
+"""Benchmark of ``uvfeat batch``: meshes per minute on a local Dask cluster of 1 and 2
 worker processes, against the same work on each mesh in turn in one process (all in the same
 run), and the peak memory of one worker per million faces and buffer size.
 

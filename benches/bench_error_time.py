@@ -1,4 +1,4 @@
-"""Error against time as the samples grow (issue 12): where the default number of samples sits.
+"""Error against time as the samples grow: where the default number of samples sits.
 
     .venv/bin/python benches/bench_error_time.py [--radius 4] [--samples 32,64,100,128,200,256,400]
 

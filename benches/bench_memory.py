@@ -1,4 +1,4 @@
-"""Peak memory of a feature computation in a fresh process (issue 15, docs/RELIABILITY.md).
+"""Peak memory of a feature computation in a fresh process (docs/RELIABILITY.md).
 
     .venv/bin/python benches/bench_memory.py [--faces 1M,5M] [--resolutions 1024,2048] [--quadrature surfels]
 

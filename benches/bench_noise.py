@@ -1,4 +1,4 @@
-"""Noise study (issue 6): integral and fit estimators against the analytic truth on noisy surfaces.
+"""Noise study: integral and fit estimators against the analytic truth on noisy surfaces.
 
     make bench-noise                         # or: .venv/bin/python benches/bench_noise.py
     .venv/bin/python benches/bench_noise.py --quick                  # noise 0 and 0.2 %, radii 2-8 %

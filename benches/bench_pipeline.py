@@ -7,8 +7,8 @@ Each cell is the median of `--repeat` runs in one process (the first run is not 
 one of them) of what `uvfeat.compute` does with the default options (H and K): the mesh checks
 (`uvfeat.Mesh`), the pre-processing (`Topology`), the rasterisation (`Atlas`), the features and
 the per-vertex values. `--reference` times the object-space reference on the same mesh in the
-same run (median of the same number of runs) and prints the ratio, the figure issue 12 asks for
-at 4 % (5x). The surfaces and their noise are those of docs/PEERS.md (`benches/peers/surfaces.py`).
+same run (median of the same number of runs) and prints the ratio (at 4 % the
+target is 5x). The surfaces and their noise are those of docs/PEERS.md (`benches/peers/surfaces.py`).
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 800-pixel PNG (docs/BENCHMARKS.md, "3D pictures").
 
 - painter, flat: matplotlib PolyCollection sorted far to near, one colour per face (uvfeat's
-  renderer before issue 13);
+  former renderer);
 - painter, Gouraud: matplotlib's Gouraud-shaded triangles (tripcolor), sorted far to near;
 - z-buffer: uvfeat.render (the core's rasteriser; smooth shading, per-pixel values, 2x2 supersampling);
 - polyscope, EGL: an offscreen OpenGL stack from PyPI (needs the system's EGL/Mesa; skipped when

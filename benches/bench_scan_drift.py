@@ -1,4 +1,4 @@
-"""Issue 16: parametric H and K on real scans against the converged reference (the reference of the
+"""Parametric H and K on real scans against the converged reference (the reference of the
 same surface refined by midpoint subdivision until it converges), as the radius grows.
 
     .venv/bin/python benches/bench_scan_drift.py [--meshes armadillo.obj stanford-bunny.obj dragon.obj]

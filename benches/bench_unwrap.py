@@ -1,4 +1,4 @@
-"""Meshes without UVs (issue 12): what the unwrap costs against the features, for uvfeat's own
+"""Meshes without UVs: what the unwrap costs against the features, for uvfeat's own
 normal-cone charts at several cone angles and for xatlas with several options, what each atlas
 gives in accuracy, and what `uvfeat compute` costs end to end on a first and a second run.
 

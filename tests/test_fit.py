@@ -1,4 +1,4 @@
-"""The fitting estimator (``method="fit"``, issue 6) against analytic truth, on a single-chart and
+"""The fitting estimator (``method="fit"``) against analytic truth, on a single-chart and
 an xatlas multi-chart parameterisation."""
 
 import numpy as np

@@ -1,5 +1,5 @@
-"""A short coverage-guided fuzzing run of the file loaders and the core entry points (issue 15;
-docs/RELIABILITY.md has the long runs). Each harness runs for 15 s from its seed corpus (copied,
+"""A short coverage-guided fuzzing run of the file loaders and the core entry points
+(docs/RELIABILITY.md has the long runs). Each harness runs for 15 s from its seed corpus (copied,
 since libFuzzer adds what it finds to the corpus folder); any exception other than a typed
 :class:`uvfeat.UvfeatError`, a crash or a hang fails the run. The inputs that once failed, kept in
 fuzz/regressions, are replayed first."""

@@ -1,4 +1,4 @@
-"""Invariances of geometry as property tests (issue 15, DESIGN.md §0 conventions) on every analytic
+"""Invariances of geometry as property tests (DESIGN.md §0 conventions) on every analytic
 shape (sphere, ellipsoid, torus, cylinder, plane): a rigid motion
 changes no feature, scaling by ``s`` scales each feature by ``s`` to the power of its length unit,
 reversing the orientation flips the signed curvatures and keeps ``K``, and two tessellations (and

@@ -1,4 +1,4 @@
-"""Warnings the user can act on (issue 15): per-vertex values from neighbourhoods truncated by a
+"""Warnings the user can act on: per-vertex values from neighbourhoods truncated by a
 mesh border, partly missing, or holding both sides of a part thinner than the radius are flagged,
 counted in summary.json and announced by a NeighbourhoodWarning."""
 

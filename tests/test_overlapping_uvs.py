@@ -1,5 +1,5 @@
 """A file whose UV layout folds one half of the surface over the other is re-atlased with
-``uv="auto"`` (issue 15): its per-vertex H matches the same mesh with a clean atlas within the Monte
+``uv="auto"``: its per-vertex H matches the same mesh with a clean atlas within the Monte
 Carlo error, in the file's vertex order, and a warning says what happened."""
 
 import warnings

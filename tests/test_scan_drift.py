@@ -1,4 +1,4 @@
-"""Issue 16 on a real scan (skips without the shared meshes): the parametric H against the
+"""A real scan (skips without the shared meshes): the parametric H against the
 converged reference of the same surface, with overlaps kept and dropped, at two radii. Pins the
 measured agreement (docs/EXPERIMENTS.md) so a regression shows."""
 
@@ -51,9 +51,9 @@ def test_bunny_agrees_with_its_converged_reference(bunny, radius, keep_limits, d
 
 @pytest.mark.parametrize("radius", ["3%", "6%"])
 def test_surfels_agree_with_the_converged_reference(bunny, radius):
-    # quadrature="surfels" counts each piece of surface once (issue 16): measured %AE / bias on
-    # 2,000 vertices against the twice-refined reference: 0.15 / +0.60 at 3 %, 0.22 / +0.71 at 6 %
-    # (the pattern: 0.84 / +0.26 and 1.94 / +4.10); the done-when of issue 16 is 1 %.
+    # quadrature="surfels" counts each piece of surface once; the direct query sums the surfels'
+    # moments at the vertices. Measured %AE against the once-refined reference: H 0.27 / K 0.40 at
+    # 3 %, 0.23 / 0.25 at 6 % (the pattern: 0.84 and 1.94 for H); the product's aim is 1 %.
     probe = np.random.default_rng(0).choice(bunny.n_vertices, 1000, replace=False)
     truth = uvfeat.converged_reference(bunny, ["mean_curvature", "gaussian_curvature"], radius, vertices=probe,
                                        max_levels=1)

@@ -1,4 +1,4 @@
-"""quadrature="surfels" (issue 16, DESIGN.md §1.4.8): neighbourhoods summed over the atlas's
+"""quadrature="surfels" (DESIGN.md §1.4.8): neighbourhoods summed over the atlas's
 surfels, the connected part of the surface inside the ball, each piece counted once."""
 
 import os

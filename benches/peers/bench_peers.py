@@ -1,5 +1,5 @@
 """Peers benchmark: uvfeat next to the curvature estimators users would otherwise pick, on analytic
-surfaces with known H and K (issue 4, part 4). Writes docs/PEERS.md, docs/peers/results.json and
+surfaces with known H and K. Writes docs/PEERS.md, docs/peers/results.json and
 docs/peers/noisy_error.png.
 
     make bench-peers                          # full run: separate venv .venv-peers, all sizes and radii

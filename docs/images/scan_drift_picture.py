@@ -1,4 +1,4 @@
-"""The error map of docs/EXPERIMENTS.md (issue 16): |H - truth| on the xatlas armadillo at r = 6 %,
+"""The error map of docs/EXPERIMENTS.md: |H - truth| on the xatlas armadillo at r = 6 %,
 with the paper's pattern and with the surfels, against the converged reference, on one colour scale.
 
     .venv/bin/python docs/images/scan_drift_picture.py      # needs the shared armadillo.obj

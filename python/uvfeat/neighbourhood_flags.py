@@ -1,5 +1,5 @@
 """Which per-vertex values come from neighbourhoods that are not what the radius asks for, and the
-plain-language notes about them (issue 15):
+plain-language notes about them:
 
 - **truncated**: the ball reaches past a mesh border, so part of the neighbourhood is missing
   from the surface itself and the values are biased (normal near the border of an open mesh);

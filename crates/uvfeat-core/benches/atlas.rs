@@ -1,4 +1,4 @@
-//! The stages of building an atlas, one at a time (issue 12): the once-per-topology pre-processing,
+//! The stages of building an atlas, one at a time: the once-per-topology pre-processing,
 //! the coverage at 1024² (once per topology and resolution), and what every frame rebuilds (the
 //! frame's normals, metrics and seam maps; the faces' patches), on the 200K-face lat-long sphere
 //! of docs/PEERS.md and the 102K-face lat-long torus. Medians and minima of 40 builds, 2 threads

@@ -1,4 +1,4 @@
-//! The lattice sums (`features/lattice_sums.rs`, issue 12) by each copy of the pass this CPU runs:
+//! The lattice sums (`features/lattice_sums.rs`) by each copy of the pass this CPU runs:
 //! one tile's lattice on a sphere cap (about 1,800 points, the disks of a 16 x 16 tile at the
 //! default 256 samples) and the 256 texels of the tile, one thread.
 //!

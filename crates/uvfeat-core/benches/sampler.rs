@@ -1,4 +1,4 @@
-//! Sampler benchmark (issue 12): feature maps of the default configuration on the 102,400-face
+//! Sampler benchmark: feature maps of the default configuration on the 102,400-face
 //! lat-long torus on each sampling path (shared lattice, fast, exact), with CPU time per sample and
 //! the error against the analytic torus, beside the floor of
 //! any parametric sampler: a bare bilinear gather of the position buffer over the same ellipses

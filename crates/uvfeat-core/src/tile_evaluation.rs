@@ -1,4 +1,4 @@
-//! Stage 5 on a tile of texels at once (`sampling = "shared"`, issue 12). The texels of one chart
+//! Stage 5 on a tile of texels at once (`sampling = "shared"`). The texels of one chart
 //! in a tile form groups, each of the texels its centre reaches without a crossing (several where
 //! a non-convex chart has arms in the tile); a group shares one located lattice of samples
 //! (`sampling/lattice.rs`) and each texel sums its own domain of it

@@ -1,4 +1,4 @@
-//! The fitting estimator (issue 6): a weighted least-squares fit of the neighbourhood's normal
+//! The fitting estimator: a weighted least-squares fit of the neighbourhood's normal
 //! sections by osculating circles, in the local frame of `p`, on the same seam-aware,
 //! area-weighted samples as the integral estimators.
 //!

@@ -1,4 +1,4 @@
-//! Compact per-face patches of the smooth surface for the sampler's fast path (issue 12): the
+//! Compact per-face patches of the smooth surface for the sampler's fast path: the
 //! same surface [`FaceMap::smooth_position`] and [`FaceMap::normal`] evaluate, stored as one
 //! 128-byte f32 record per face so that a neighbourhood's faces stay in cache (a [`FaceMap`] is
 //! 352 bytes of f64; on a 100K-face mesh their 35 MB did not fit in any cache and the lookup was

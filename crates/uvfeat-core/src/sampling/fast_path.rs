@@ -1,4 +1,4 @@
-//! The sampler's fast path (issue 12). A pattern point whose target texel lies well inside the
+//! The sampler's fast path. A pattern point whose target texel lies well inside the
 //! centre's chart (see [`crate::relocation::interior_face`]) is reached without crossing anything,
 //! and the exact path then evaluates the face that texel shows. The fast path does the same with
 //! one load of [`Coverage::interior_face`] and one compact f32 [`FacePatch`], no walk, no search

@@ -1,4 +1,4 @@
-//! One sample set shared by a tile of texels (issue 12, `sampling = "shared"`, DESIGN.md §1.4.7).
+//! One sample set shared by a tile of texels (`sampling = "shared"`, DESIGN.md §1.4.7).
 //!
 //! The per-texel samplers draw `N` points for every texel, although the neighbourhoods of nearby
 //! texels cover nearly the same surface: at r = 4 % of a 100K-face torus a texel's ellipse holds

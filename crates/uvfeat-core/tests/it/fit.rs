@@ -1,4 +1,4 @@
-//! The fitting estimator (issue 6) against analytic truth: curvatures as accurate as the integral
+//! The fitting estimator against analytic truth: curvatures as accurate as the integral
 //! estimators, principal directions of a torus and an ellipsoid within 2 degrees, consistent at
 //! the seams and invariant under a rigid motion.
 
