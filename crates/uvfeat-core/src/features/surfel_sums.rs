@@ -5,7 +5,7 @@
 //! H reads two moments, `dA (q - p)` (its numerator), which a surfel's area and centroid give
 //! exactly, and `dA |q - p|^2` (its denominator), which the surfel's spread about its centroid
 //! adds exactly (`area |c - p|^2 + spread`). K's moments and the volumes' `dA rho` are read at the
-//! centroid. The level is the flat quadrature's (about [`TARGET_SURFELS`] in a plane's ball).
+//! centroid. The level and the ramp are the flat quadrature's ([`SurfelBall`]).
 //!
 //! The search runs over the level's adjacency from the centre's surfel while the centroids are
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
@@ -15,7 +15,7 @@ use super::{NeighbourhoodStats, StatsSettings};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
-use crate::sampling::{ramp_centre, surfel_level, SampleCounts, TARGET_SURFELS};
+use crate::sampling::{SampleCounts, SurfelBall};
 use crate::stamps::Stamps;
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
@@ -91,32 +91,21 @@ pub fn surfel_sums(
     let surfels = atlas.surfels(settings.surface);
     let mut stats = NeighbourhoodStats::default();
     let mut counts = SampleCounts::default();
-    let finest = &surfels.levels[0];
-    let Some(start) = atlas
-        .nearest_texel(centre.uv, |t| finest.at(t, centre.chart).is_some())
-        .and_then(|t| finest.at(t, centre.chart))
+    let r = settings.stats.radius;
+    let texels = (centre.texel_length, centre.texel_side);
+    let Some(SurfelBall { level: k, start, ramp: (inner, outer) }) =
+        SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r)
     else {
         return (stats, counts);
     };
-    let r = settings.stats.radius;
-    let k = surfel_level(surfels.levels.len(), centre.texel_length, r, TARGET_SURFELS);
-    // The ramp: one surfel wide, centred to weigh a disk exactly (as the flat quadrature's).
-    let width = (centre.texel_side * (1u64 << k) as f64).min(0.5 * r);
-    let edge = r * ramp_centre(width / r);
-    let ball = Ball {
-        p: centre.position,
-        n: centre.normal,
-        outer: edge + width / 2.0,
-        inverse_ramp: 1.0 / width,
-        inverse_r: 1.0 / r,
-    };
+    let ball =
+        Ball { p: centre.position, n: centre.normal, outer, inverse_ramp: 1.0 / (outer - inner), inverse_r: 1.0 / r };
     let level = &surfels.levels[k];
     SCRATCH.with_borrow_mut(|(reached, queue)| {
         reached.reset(level.len());
         queue.clear();
-        let first = surfels.ancestor(start, k);
-        reached.insert(first);
-        queue.push(first);
+        reached.insert(start);
+        queue.push(start);
         let mut next = 0;
         while let Some(&s) = queue.get(next) {
             next += 1;

@@ -22,14 +22,14 @@ use super::geodesic::arc_distance;
 use super::sample::{ramp_centre, Sample, SampleCounts};
 use super::settings::{Criterion, SamplerSettings};
 use crate::atlas::Atlas;
-use crate::raster::{Surface, SurfelLevel, SurfelPoint};
+use crate::raster::{Surface, SurfelPoint, Surfels};
 use crate::stamps::Stamps;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::cell::RefCell;
 
 /// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level). At 512
 /// the quadrature's error is a few tenths of a percent of H's range on the shared scans.
-pub const TARGET_SURFELS: f64 = 512.0;
+const TARGET_SURFELS: f64 = 512.0;
 
 thread_local! {
     /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
@@ -38,7 +38,7 @@ thread_local! {
 
 /// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about `target` in
 /// the ball where a finest surfel is up to `texel_length` long (`sigma_1 / W`).
-pub fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
+fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
     // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
     // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
     // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
@@ -72,19 +72,16 @@ pub fn gather_surfels(
     out: &mut Vec<Sample>,
 ) -> SampleCounts {
     let surfels = atlas.surfels(settings.surface);
-    let texel_length = centre.distortion.sigma1 / atlas.resolution() as f64;
-    let k = surfel_level(surfels.levels.len(), texel_length, settings.radius, TARGET_SURFELS);
-    let level = &surfels.levels[k];
     let mut counts = SampleCounts::default();
-    let Some(start) = start_surfel(atlas, &surfels.levels[0], centre) else { return counts };
-    let start = surfels.ancestor(start, k);
+    let w = atlas.resolution() as f64;
+    let texels = (centre.distortion.sigma1 / w, centre.distortion.area_element().sqrt() / w);
+    let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, settings.radius) else {
+        return counts;
+    };
+    let (k, start, (inner, outer)) = (ball.level, ball.start, ball.ramp);
+    let level = &surfels.levels[k];
     let r = settings.radius;
     let p = centre.position;
-    // One surfel width in object units at the centre.
-    let width = centre.distortion.area_element().sqrt() * (1u64 << k) as f64 / atlas.resolution() as f64;
-    let width = width.min(0.5 * r);
-    let edge = r * ramp_centre(width / r);
-    let (inner, outer) = (edge - width / 2.0, edge + width / 2.0);
     REACHED.with_borrow_mut(|(reached, queue)| {
         reached.reset(surfels.levels[0].len());
         queue.clear();
@@ -127,9 +124,37 @@ pub fn gather_surfels(
     counts
 }
 
-/// The finest surfel of the centre's chart in the centre's texel, or in the nearest of its eight
-/// neighbours (the centre of a gutter texel lies just off its chart).
-fn start_surfel(atlas: &Atlas, level: &SurfelLevel, centre: &Centre) -> Option<u32> {
-    let texel = atlas.nearest_texel(centre.uv, |t| level.at(t, centre.chart).is_some())?;
-    level.at(texel, centre.chart)
+/// Where a ball's surfels are summed: the level, the surfel of it holding the centre, and the
+/// ramp across the ball's edge.
+#[derive(Debug, Clone, Copy)]
+pub struct SurfelBall {
+    /// The level whose surfels put about [`TARGET_SURFELS`] in the ball.
+    pub level: usize,
+    /// The surfel of that level holding the centre.
+    pub start: u32,
+    /// Weights fall linearly from 1 at `ramp.0` to 0 at `ramp.1`: one surfel wide, centred so
+    /// that a plane's disk weighs exactly `pi r^2`.
+    pub ramp: (f64, f64),
+}
+
+impl SurfelBall {
+    /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is up to
+    /// `texels.0` long and `texels.1` on the side of its area (`sigma_1 / W`, `sqrt(sigma_1
+    /// sigma_2) / W`). `None` where neither the point's texel nor its eight neighbours hold a
+    /// surfel of its chart (the centre of a gutter texel lies just off its chart).
+    pub fn new(
+        atlas: &Atlas,
+        surfels: &Surfels,
+        (uv, chart): (DVec2, i32),
+        texels: (f64, f64),
+        radius: f64,
+    ) -> Option<Self> {
+        let finest = &surfels.levels[0];
+        let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
+        let level = surfel_level(surfels.levels.len(), texels.0, radius, TARGET_SURFELS);
+        let start = surfels.ancestor(finest.at(texel, chart)?, level);
+        let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
+        let edge = radius * ramp_centre(width / radius);
+        Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0) })
+    }
 }
