@@ -16,14 +16,7 @@ use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
 use crate::sampling::{SampleCounts, SurfelBall};
-use crate::stamps::Stamps;
 use glam::{DVec2, DVec3};
-use std::cell::RefCell;
-
-thread_local! {
-    /// Per thread: the surfels reached and the search's queue.
-    static SCRATCH: RefCell<(Stamps, Vec<u32>)> = RefCell::new((Stamps::new(0), Vec::new()));
-}
 
 /// Where a neighbourhood is centred: a surface point, its unit normal, where it lies in the atlas
 /// and the object length of one texel there.
@@ -93,36 +86,15 @@ pub fn surfel_sums(
     let mut counts = SampleCounts::default();
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
-    let Some(SurfelBall { level: k, start, ramp: (inner, outer) }) =
-        SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r)
-    else {
+    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r) else {
         return (stats, counts);
     };
+    let (inner, outer) = search.ramp;
     let ball =
         Ball { p: centre.position, n: centre.normal, outer, inverse_ramp: 1.0 / (outer - inner), inverse_r: 1.0 / r };
-    let level = &surfels.levels[k];
-    SCRATCH.with_borrow_mut(|(reached, queue)| {
-        reached.reset(level.len());
-        queue.clear();
-        reached.insert(start);
-        queue.push(start);
-        let mut next = 0;
-        while let Some(&s) = queue.get(next) {
-            next += 1;
-            // The ring just outside the ball is a third of the surfels reached: no root for them.
-            let distance2 = (level.point[s as usize].position - ball.p).length_squared();
-            if distance2 >= ball.outer * ball.outer {
-                continue;
-            }
-            let distance = distance2.sqrt();
-            for &t in level.neighbours(s) {
-                if reached.insert(t) {
-                    queue.push(t);
-                }
-            }
-            ball.add(&mut stats, &mut counts, level, s, distance, settings);
-        }
-    });
+    let level = &surfels.levels[search.level];
+    search
+        .search(level, centre.position, |s, distance| ball.add(&mut stats, &mut counts, level, s, distance, settings));
     (stats, counts)
 }
 

@@ -22,7 +22,7 @@ use super::geodesic::arc_distance;
 use super::sample::{ramp_centre, Sample, SampleCounts};
 use super::settings::{Criterion, SamplerSettings};
 use crate::atlas::Atlas;
-use crate::raster::{Surface, SurfelPoint, Surfels};
+use crate::raster::{Surface, SurfelLevel, SurfelPoint, Surfels};
 use crate::stamps::Stamps;
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
@@ -78,48 +78,30 @@ pub fn gather_surfels(
     let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, settings.radius) else {
         return counts;
     };
-    let (k, start, (inner, outer)) = (ball.level, ball.start, ball.ramp);
-    let level = &surfels.levels[k];
+    let level = &surfels.levels[ball.level];
+    let (inner, outer) = ball.ramp;
     let r = settings.radius;
-    let p = centre.position;
-    REACHED.with_borrow_mut(|(reached, queue)| {
-        reached.reset(surfels.levels[0].len());
-        queue.clear();
-        reached.insert(start);
-        queue.push(start);
-        let mut next = 0;
-        while let Some(&s) = queue.get(next) {
-            next += 1;
-            let SurfelPoint { position, area, .. } = level.point[s as usize];
-            let offset = position - p;
-            let distance = offset.length();
-            if distance >= outer {
-                continue;
-            }
-            for &t in level.neighbours(s) {
-                if reached.insert(t) {
-                    queue.push(t);
-                }
-            }
-            // The surfel holding the centre keeps its area (its elevation is 0 there).
-            let sin_alpha = if distance > 1e-6 * r { centre.normal.dot(offset) / distance } else { 0.0 };
-            let geodesic = if settings.with_geodesic { arc_distance(distance, sin_alpha) } else { f64::NAN };
-            if settings.criterion == Criterion::Geodesic && geodesic >= r {
-                continue;
-            }
-            let ramp = ((outer - distance) / (outer - inner)).min(1.0);
-            out.push(Sample {
-                position,
-                normal: if settings.with_normals { level.normal[s as usize] } else { DVec3::NAN },
-                area: area * ramp,
-                distance,
-                sin_alpha,
-                geodesic,
-                pattern_index: s,
-            });
-            counts.valid += 1;
-            counts.border += u32::from(level.on_border[s as usize] && distance < r);
+    ball.search(level, centre.position, |s, distance| {
+        let SurfelPoint { position, area, .. } = level.point[s as usize];
+        let offset = position - centre.position;
+        // The surfel holding the centre keeps its area (its elevation is 0 there).
+        let sin_alpha = if distance > 1e-6 * r { centre.normal.dot(offset) / distance } else { 0.0 };
+        let geodesic = if settings.with_geodesic { arc_distance(distance, sin_alpha) } else { f64::NAN };
+        if settings.criterion == Criterion::Geodesic && geodesic >= r {
+            return;
         }
+        let ramp = ((outer - distance) / (outer - inner)).min(1.0);
+        out.push(Sample {
+            position,
+            normal: if settings.with_normals { level.normal[s as usize] } else { DVec3::NAN },
+            area: area * ramp,
+            distance,
+            sin_alpha,
+            geodesic,
+            pattern_index: s,
+        });
+        counts.valid += 1;
+        counts.border += u32::from(level.on_border[s as usize] && distance < r);
     });
     counts
 }
@@ -156,5 +138,33 @@ impl SurfelBall {
         let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
         let edge = radius * ramp_centre(width / radius);
         Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0) })
+    }
+
+    /// Runs `visit(s, distance)` on every surfel `s` of `level` (this ball's) whose centroid is
+    /// within the ramp's outer edge of `centre` and connected to the start through such surfels,
+    /// breadth first, as the reference's search over edges.
+    pub fn search(&self, level: &SurfelLevel, centre: DVec3, mut visit: impl FnMut(u32, f64)) {
+        let outer = self.ramp.1;
+        REACHED.with_borrow_mut(|(reached, queue)| {
+            reached.reset(level.len());
+            queue.clear();
+            reached.insert(self.start);
+            queue.push(self.start);
+            let mut next = 0;
+            while let Some(&s) = queue.get(next) {
+                next += 1;
+                // The ring just outside the ball is a third of the surfels reached: no root for them.
+                let distance2 = (level.point[s as usize].position - centre).length_squared();
+                if distance2 >= outer * outer {
+                    continue;
+                }
+                for &t in level.neighbours(s) {
+                    if reached.insert(t) {
+                        queue.push(t);
+                    }
+                }
+                visit(s, distance2.sqrt());
+            }
+        });
     }
 }
