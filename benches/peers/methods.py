@@ -50,8 +50,7 @@ FEATURES = ["mean_curvature", "gaussian_curvature"]
 
 def uvfeat_mesh(surface: Surface):
     import uvfeat
-    # Copies: uvfeat.Mesh marks the arrays it is given read-only, which would break later users.
-    return uvfeat.Mesh(*(np.array(a) for a in (surface.positions, surface.faces, surface.uvs, surface.uv_faces)))
+    return uvfeat.Mesh(surface.positions, surface.faces, surface.uvs, surface.uv_faces)
 
 
 def _uvfeat_values(values: dict) -> tuple:

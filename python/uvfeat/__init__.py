@@ -9,6 +9,7 @@ Quick start::
     maps = atlas.compute(["mean_curvature", "shape_index"], radius="2%")
     maps["mean_curvature"].texture, maps["mean_curvature"].per_vertex()
     values = uvfeat.compute(mesh, "gaussian_curvature", radius=0.05)   # one shot, per vertex
+    values = uvfeat.compute(trimesh_mesh, "mean_curvature", "2%")   # trimesh, PyVista, Open3D, arrays too
     for frame in uvfeat.animate("fox.glb", "mean_curvature", "2%", fps=24):   # per animation frame
         frame.time, frame["mean_curvature"]
     table = uvfeat.batch(["scans/", "*.ply"], "mean_curvature", "2%", out="runs/")   # many meshes, on Dask
@@ -46,6 +47,7 @@ from .features import FeatureMap
 from .options import FEATURES
 from .surface_plot import plot
 from .viewer import view
+from .interop import attach, to_pyvista
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh
 
@@ -59,6 +61,7 @@ __all__ = [
     "FeatureMap",
     "GltfAnimation",
     "Neighbourhoods",
+    "attach",
     "compute",
     "ConvergedReference",
     "converged_reference",
@@ -86,6 +89,7 @@ __all__ = [
     "load",
     "options",
     "plot",
+    "to_pyvista",
     "reference",
     "shapes",
     "unwrap",

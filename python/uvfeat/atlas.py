@@ -16,6 +16,7 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError, ResolutionTooLargeError
+from .interop import as_mesh
 from .mesh import Mesh, _readonly
 from .options import ARGUMENT_DEFAULTS, check_resolution
 
@@ -106,6 +107,7 @@ class Atlas:
     """
 
     def __init__(self, mesh: Mesh, resolution: int = 1024, precision: str = "f32"):
+        mesh = as_mesh(mesh)
         resolution = check_resolution(resolution)
         if precision not in PRECISIONS:
             raise InvalidParameterError(f"precision must be one of {PRECISIONS}, got {precision!r}")

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._core import __version__
+from .interop import as_mesh
 from .mesh import Mesh
 from .options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS
 
@@ -92,6 +93,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     names = feature_names(features)
     if gaussian_method not in PARAMETRIC_GAUSSIAN:
         raise InvalidParameterError(f"gaussian_method {gaussian_method!r} is not one of {list(PARAMETRIC_GAUSSIAN)}")
+    mesh = as_mesh(mesh)
     reference = Reference(mesh)
     ref_values = reference.compute(names, radius, gaussian_method=gaussian_method)
     truth = None

@@ -5,12 +5,14 @@ from __future__ import annotations
 import numpy as np
 
 from .atlas import Atlas
-from .mesh import Mesh
+from .interop import mesh_source
 
 
-def compute(mesh: Mesh, features, radius, *, resolution: int = 1024, precision: str = "f32",
+def compute(mesh, features, radius, *, resolution: int = 1024, precision: str = "f32",
             paper_mode: bool = False, **options) -> dict[str, np.ndarray]:
-    """Per-vertex features of ``mesh`` (one value per row of ``mesh.positions``).
+    """Per-vertex features of ``mesh`` (a :class:`~uvfeat.Mesh` or any of
+    :data:`uvfeat.interop.ACCEPTED`), one value per vertex of it: per row of ``mesh.positions``,
+    of a trimesh's ``vertices``, of a PolyData's ``points`` (NaN at a volume grid's inner points).
 
     Builds an :class:`~uvfeat.Atlas` at ``resolution`` and calls :meth:`~uvfeat.Atlas.per_vertex`
     with ``features``, ``radius`` and ``**options`` (``samples``, ``compute_resolution``,
@@ -22,9 +24,11 @@ def compute(mesh: Mesh, features, radius, *, resolution: int = 1024, precision: 
     dict of str to ndarray
         ``(n_vertices,)`` float32 per feature (``(n_radii, n_vertices)`` for a list of radii).
     """
+    source = mesh_source(mesh)
+    mesh = source.mesh
     if not mesh.has_uvs:
         mesh = mesh.with_atlas(resolution=resolution)
     if paper_mode:
         precision = "f16"
     atlas = Atlas(mesh, resolution=resolution, precision=precision)
-    return atlas.per_vertex(features, radius, paper_mode=paper_mode, **options)
+    return source.to_points(atlas.per_vertex(features, radius, paper_mode=paper_mode, **options))

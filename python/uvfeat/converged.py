@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import InvalidParameterError
+from .interop import as_mesh
 from .mesh import Mesh
 from .options import feature_names, resolve_radius
 from .reference import Reference
@@ -70,7 +71,8 @@ def converged_reference(mesh: Mesh, features, radius, *, vertices=None, toleranc
     Parameters
     ----------
     mesh : Mesh
-        Any triangle mesh (UVs are not needed).
+        Any triangle mesh (UVs are not needed), or any of :data:`uvfeat.interop.ACCEPTED`
+        (values per vertex of its surface).
     features, radius, **options
         As for :meth:`uvfeat.reference.Reference.compute`; a percentage radius is resolved on
         ``mesh`` (subdivision keeps its bounding box).
@@ -87,8 +89,7 @@ def converged_reference(mesh: Mesh, features, radius, *, vertices=None, toleranc
         The reference's values on ``mesh`` itself at every row (level 0), when the caller has
         them already: level 0 is then not computed again (its time is recorded as 0).
     """
-    if not isinstance(mesh, Mesh):
-        raise InvalidParameterError(f"expected a uvfeat.Mesh, got {type(mesh).__name__}")
+    mesh = as_mesh(mesh)
     if not (isinstance(max_levels, int) and isinstance(min_levels, int) and 0 <= min_levels <= max_levels <= 5):
         raise InvalidParameterError(f"need 0 <= min_levels <= max_levels <= 5, got {min_levels}, {max_levels}")
     if not (np.isfinite(tolerance) and tolerance > 0):

@@ -23,7 +23,8 @@ def _readonly(array: np.ndarray) -> np.ndarray:
 
 
 def _float_rows(values, width: int, name: str) -> np.ndarray:
-    array = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
+    # A copy: the mesh's arrays are read-only, the caller's stay as they were.
+    array = np.array(values, dtype=np.float64, order="C")
     if array.ndim != 2 or array.shape[1] != width:
         raise InvalidMeshError(f"{name} must have shape (n, {width}), got {array.shape}")
     # One flat test first: the per-row one (axis=1), needed only for the message, costs a few ms

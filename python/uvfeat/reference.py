@@ -25,6 +25,7 @@ import numpy as np
 from . import _core
 from .errors import InvalidParameterError
 from .options import feature_names, resolve_radius
+from .interop import as_mesh, mesh_source
 from .mesh import Mesh
 
 #: Gaussian-curvature methods of the reference.
@@ -67,8 +68,7 @@ class Reference:
     """
 
     def __init__(self, mesh: Mesh):
-        if not isinstance(mesh, Mesh):
-            raise InvalidParameterError(f"expected a uvfeat.Mesh, got {type(mesh).__name__}")
+        mesh = as_mesh(mesh)
         self.mesh = mesh
         started = time.perf_counter()
         self._core = _core.ReferenceMesh(mesh.positions, mesh.faces)
@@ -128,11 +128,16 @@ class Reference:
         return self._core.geodesic_distances(int(source), float(max_distance))
 
 
-def compute(mesh: Mesh, features, radius, *, vertices=None, return_timings: bool = False, **options):
-    """Per-vertex object-space reference values of ``mesh`` (one value per row of
-    ``mesh.positions``); see :meth:`Reference.compute`. With ``return_timings=True`` returns
+def compute(mesh, features, radius, *, vertices=None, return_timings: bool = False, **options):
+    """Per-vertex object-space reference values of ``mesh`` (a :class:`~uvfeat.Mesh` or any of
+    :data:`uvfeat.interop.ACCEPTED`; one value per vertex of it, as :func:`uvfeat.compute`); see :meth:`Reference.compute`. With ``return_timings=True`` returns
     ``(values, timings)`` with ``connectivity_s`` (welding and half-edges, untimed in the paper)
     and ``estimation_s``. For several calls on one mesh keep a :class:`Reference`."""
-    reference = Reference(mesh)
+    source = mesh_source(mesh)
+    if vertices is not None and source.point_of_vertex is not None:
+        raise InvalidParameterError("vertices= indexes a mesh's vertices: pass the grid's surface "
+                                    "(extract_surface()) to pick some")
+    reference = Reference(source.mesh)
     values = reference.compute(features, radius, vertices=vertices, **options)
+    values = values if vertices is not None else source.to_points(values)
     return (values, reference.last_timings) if return_timings else values

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InvalidParameterError
+from .interop import as_mesh
 
 #: Standard views as (elevation, azimuth) in degrees around the up axis; azimuth 0 looks at the
 #: front of a model facing +z with y up (the OBJ and glTF convention), 90 at its +x side.
@@ -83,6 +84,7 @@ def plot(mesh, values, *, feature: str | None = None, radius=None, views=DEFAULT
 
     if up not in UP_AXES:
         raise InvalidParameterError(f"up must be one of {sorted(UP_AXES)}, got {up!r}")
+    mesh = as_mesh(mesh)
     feature = feature or getattr(values, "name", None) or "value"
     rows, labels = per_vertex_rows(mesh, values, radius)
     angles = [resolve_view(v) for v in ([views] if isinstance(views, str) else views)]

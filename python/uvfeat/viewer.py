@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InvalidParameterError, ViewerError
+from .interop import as_mesh
 from .mesh import Mesh
 from .options import DEFAULT_OPTIONS
 
@@ -259,6 +260,7 @@ def view(mesh: Mesh, results: dict | None = None, *, feature: str | None = None,
     from .features import FeatureMap
     from .options import feature_names
 
+    mesh = as_mesh(mesh)
     if results is None:
         from .atlas import Atlas
 

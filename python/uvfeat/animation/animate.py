@@ -14,6 +14,7 @@ from ..atlas import Atlas
 from ..errors import AnimationError
 from ..features import FeatureMap
 from ..options import feature_names, resolve_options, resolve_radius
+from ..interop import as_mesh
 from ..mesh import Mesh
 from .sources import frame_source
 
@@ -157,8 +158,7 @@ def animate(source, features, radius, frames=None, fps: float | None = None, *, 
     if isinstance(source, (str, os.PathLike)):
         path = os.fspath(source)
         source = load(path, uv=uv, resolution=resolution)
-    if not isinstance(source, Mesh):
-        raise AnimationError(f"source must be a uvfeat.Mesh or a mesh file path, got {type(source).__name__}")
+    source = as_mesh(source)
     names = feature_names(features)
     resolve_options({k: v for k, v in options.items() if k not in COMPUTE_ARGUMENTS}, paper_mode=False)
     diagonal = source.bounding_box_diagonal
