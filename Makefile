@@ -18,7 +18,7 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh charset-normalizer xatlas matplotlib pillow rich pygltflib pytest hypothesis atheris pygeodesic mypy "dask[distributed,diagnostics]" pyarrow imageio-ffmpeg polyscope scipy tifffile
+	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh charset-normalizer xatlas matplotlib pillow rich pygltflib pytest hypothesis atheris pygeodesic mypy "dask[distributed,diagnostics]" pyarrow imageio-ffmpeg polyscope scipy tifffile pyvista
 	$(BIN)/maturin develop --release -q
 
 demo: install

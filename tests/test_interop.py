@@ -3,6 +3,8 @@ give the values of the same uvfeat.Mesh, in the source's own vertex order; resul
 the source objects (uvfeat.interop)."""
 
 import functools
+import importlib.util
+import re
 import warnings
 
 import numpy as np
@@ -10,6 +12,7 @@ import pytest
 import trimesh
 
 import uvfeat
+from conftest import REPO
 from uvfeat.bake import split_by_uv
 
 pyvista = pytest.importorskip("pyvista")
@@ -157,3 +160,21 @@ def test_results_attach_to_trimesh_and_pyvista_and_colour_a_pyvista_mesh():
         uvfeat.attach(poly, {"mean_curvature": np.zeros(101)})
     with pytest.raises(uvfeat.InvalidParameterError, match="no per-vertex fields"):
         uvfeat.attach(object(), values)
+
+
+def usage_examples() -> list[str]:
+    text = (REPO / "docs" / "USAGE.md").read_text()
+    section = text.split("## From trimesh, PyVista, Open3D\n", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```python\n(.*?)```", section, re.S)
+
+
+def test_the_usage_examples_run_as_written(capsys):
+    examples = usage_examples()
+    assert len(examples) == 2
+    for example in examples:
+        if "import open3d" in example and importlib.util.find_spec("open3d") is None:
+            continue
+        exec(compile(example, "docs/USAGE.md", "exec"), {})
+    medians = [float(line) for line in capsys.readouterr().out.split()]
+    assert 0.49 < medians[0] < 0.51
+    assert all(0.95 < m < 1.05 for m in medians[1:])
