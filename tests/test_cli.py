@@ -25,6 +25,23 @@ def test_demo_runs_on_the_built_in_mesh(tmp_path):
     assert features["settings"]["compute_resolution"] == 256 and list(features["radii"]) == ["1%", "4%", "16%"]
 
 
+def test_the_demo_says_only_what_a_user_can_act_on(tmp_path):
+    """Run as users run it: one line per note, none about the built-in mesh's own file, and no
+    Python warning format (file, line number, source line)."""
+    import re
+    import subprocess
+    import sys
+
+    run = subprocess.run([sys.executable, "-m", "uvfeat", "demo", "--resolution", "256", "--compute-resolution", "64",
+                          "--out", str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    lines = (run.stdout + run.stderr).splitlines()
+    assert not any(re.search(r"\.py:\d+: \w+Warning", line) for line in lines), lines
+    notes = [line for line in lines if line.startswith(("note:", "warning:"))]
+    assert len(notes) <= 1 and not any("UVs span" in line for line in notes), notes
+    assert all(len(line) < 400 for line in lines) and lines[-1].startswith("wrote ")
+
+
 def test_errors_exit_with_status_2_and_a_message(tmp_path, capsys):
     assert main(["atlas", str(tmp_path / "missing.obj"), "--out", str(tmp_path)]) == 2
     assert main(["atlas", str(tmp_path / "missing.obj"), "--resolution", "0"]) == 2

@@ -165,3 +165,21 @@ def test_the_panel_draws_a_frame(sphere_viewer):
     ps.clear_user_callback()
     assert panel.message == ""
     assert radius_argument(" 0.25 ") == 0.25 and radius_argument("4%") == "4%"
+
+
+def test_the_view_command_says_only_its_own_lines(tmp_path):
+    """No polyscope start-up log, no nanobind leak report at exit, and warnings as one line with no
+    Python source echo."""
+    import re
+
+    from uvfeat.examples import spot_path
+
+    shot = tmp_path / "view.png"
+    run = subprocess.run([sys.executable, "-m", "uvfeat", "view", str(spot_path()), "--radius", "4%", "--resolution",
+                          "256", "--compute-resolution", "128", "--samples", "32", "--screenshot", str(shot)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    said = run.stdout + run.stderr
+    assert "[polyscope]" not in said and "nanobind" not in said and "leaked" not in said, said
+    assert not re.search(r"\.py:\d+: \w+Warning", said), said
+    assert any(line.startswith("warning: at r = 4%") for line in said.splitlines()), said

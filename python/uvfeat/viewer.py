@@ -90,6 +90,8 @@ class Viewer:
         if not self.ps.is_initialized():
             # polyscope would otherwise write imgui.ini and .polyscope.ini into the working folder
             self.ps.set_use_prefs_file(False)
+            # polyscope's start-up log (five "[polyscope] EGL: ..." lines) says nothing a user acts on.
+            self.ps.set_verbosity(0)
             try:
                 self.ps.init(backend)
             except Exception as error:  # polyscope raises bare RuntimeErrors (no display, no GL)
@@ -233,6 +235,13 @@ class Viewer:
         else:
             return None
         return int(corner if hit.structure_name == "mesh" else self.uv_vertex[corner])
+
+    def close(self) -> None:
+        """Removes this viewer's meshes from polyscope (the bindings report them as leaked at exit
+        otherwise)."""
+        self.surface = self.uv_map = None
+        self.ps.remove_all_structures()
+        self.ps.clear_user_callback()
 
     # -- window -----------------------------------------------------------------------------------
     def show(self) -> None:

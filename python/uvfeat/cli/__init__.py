@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import gc
 import sys
+import warnings
 
 from .._core import __version__
 from ..errors import UvfeatError
@@ -25,6 +26,12 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def print_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as one line of the command's output (Python's own format adds the file, the line
+    number and the source line of the library call that raised it)."""
+    console().print(f"[yellow]warning:[/yellow] {message}", highlight=False)
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     for option in ("resolution", "compute_resolution"):
@@ -33,7 +40,9 @@ def main(argv: list[str] | None = None) -> int:
                             f"got {getattr(args, option)}")
             return 2
     try:
-        return args.handler(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = print_warning
+            return args.handler(args)
     except UvfeatError as exc:
         console().print(f"[red]error:[/red] {exc}")
         return 2

@@ -16,7 +16,8 @@ MESH_HELP = "mesh file (obj, ply, glb, gltf, off, stl)"
 def console():
     from rich.console import Console
 
-    return Console(stderr=True)
+    # Soft wrap: a note is one line however wide the terminal (piped output is not cut at 80 columns).
+    return Console(stderr=True, soft_wrap=True)
 
 
 @contextlib.contextmanager

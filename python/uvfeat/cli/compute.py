@@ -48,8 +48,10 @@ def picture_modules_loading(pictures: bool):
         thread.join()
 
 
-def write_features(mesh, args, console, load_notes: list[str], started: float) -> dict:
-    """Computes the features at every radius and writes per-vertex files, maps and a summary."""
+def write_features(mesh, args, console, load_notes: list[str], started: float, explain=None) -> dict:
+    """Computes the features at every radius and writes per-vertex files, maps and a summary. The
+    notes are printed as they are, or as the lines ``explain(notes)`` gives (summary.json keeps
+    them all)."""
     job = FeatureJob.from_args(args)
     with steps(console, 2 + 2 * len(job.radii)) as advance, picture_modules_loading(job.pictures):
         atlas, summary = write_feature_files(mesh, job, args.out, load_notes, started, advance)
@@ -59,6 +61,7 @@ def write_features(mesh, args, console, load_notes: list[str], started: float) -
         console.print(f"r = {radius} ({info['radius']:.4g}): {info['features_s']:.2f} s, "
                       f"{d['mean_valid_samples']:.0f} samples/texel, {100 * d['missing_fraction']:.2f} % missing, "
                       f"{d['truncated_texels']} texels truncated by mesh borders")
-    print_notes_and_outputs(console, summary["warnings"], "per-vertex .ply/.npz, maps .npy/.png, 3D pictures *_3d.png and summary.json",
+    notes = summary["warnings"] if explain is None else explain(summary["warnings"])
+    print_notes_and_outputs(console, notes, "per-vertex .ply/.npz, maps .npy/.png, 3D pictures *_3d.png and summary.json",
                             args.out)
     return summary

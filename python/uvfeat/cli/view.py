@@ -40,4 +40,5 @@ def open_viewer(mesh, args, console, load_notes: list[str], started: float) -> N
                   backend=HEADLESS if args.screenshot else "auto", show=not args.screenshot)
     if args.screenshot:
         Image.fromarray(viewer.screenshot()).save(args.screenshot)
+        viewer.close()
         console.print(f"wrote {args.screenshot} ({viewer.title})")
