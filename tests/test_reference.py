@@ -123,7 +123,7 @@ def test_bad_input_gets_the_same_clear_errors(sphere):
         ref.compute("mean_curvature", 0.1, vertices=[0, 99999])
     with pytest.raises(uvfeat.InvalidParameterError, match="source"):
         ref.geodesic_distances(-1)
-    with pytest.raises(uvfeat.InvalidParameterError, match="uvfeat.Mesh"):
+    with pytest.raises(uvfeat.InvalidMeshError, match="numpy.ndarray as a mesh; uvfeat takes a uvfeat.Mesh"):
         uvfeat.reference.Reference(sphere.positions)
     with pytest.raises(uvfeat.InvalidMeshError, match="non-finite"):
         uvfeat.Mesh([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
