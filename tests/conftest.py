@@ -3,6 +3,7 @@
 
 import os
 import pathlib
+import re
 
 import pytest
 
@@ -37,3 +38,10 @@ def private_atlas_cache(tmp_path_factory):
         del os.environ["UVFEAT_CACHE_DIR"]
     else:
         os.environ["UVFEAT_CACHE_DIR"] = previous
+
+
+def usage_examples(heading: str) -> list[str]:
+    """The Python examples of docs/USAGE.md's section ``heading``."""
+    text = (REPO / "docs" / "USAGE.md").read_text()
+    section = text.split(f"## {heading}\n", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```python\n(.*?)```", section, re.S)

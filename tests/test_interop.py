@@ -4,7 +4,6 @@ the source objects (uvfeat.interop)."""
 
 import functools
 import importlib.util
-import re
 import warnings
 
 import numpy as np
@@ -12,7 +11,7 @@ import pytest
 import trimesh
 
 import uvfeat
-from conftest import REPO
+from conftest import usage_examples
 from uvfeat.bake import split_by_uv
 
 pyvista = pytest.importorskip("pyvista")
@@ -162,14 +161,8 @@ def test_results_attach_to_trimesh_and_pyvista_and_colour_a_pyvista_mesh():
         uvfeat.attach(object(), values)
 
 
-def usage_examples() -> list[str]:
-    text = (REPO / "docs" / "USAGE.md").read_text()
-    section = text.split("## From trimesh, PyVista, Open3D\n", 1)[1].split("\n## ", 1)[0]
-    return re.findall(r"```python\n(.*?)```", section, re.S)
-
-
 def test_the_usage_examples_run_as_written(capsys):
-    examples = usage_examples()
+    examples = usage_examples("From trimesh, PyVista, Open3D")
     assert len(examples) == 2
     for example in examples:
         if "import open3d" in example and importlib.util.find_spec("open3d") is None:

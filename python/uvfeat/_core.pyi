@@ -195,7 +195,7 @@ def option_choices_by_name() -> dict[str, list[str]]:
 
 def compute_maps(atlas: Atlas, settings: ComputeSettings) -> FeatureMaps: ...
 def vertex_feature_values(
-    atlas: Atlas, settings: ComputeSettings
+    atlas: Atlas, settings: ComputeSettings, radii: NDArray[np.float64] | None = None
 ) -> tuple[list[NDArray[np.float32]], NDArray[np.uint32], NDArray[np.uint32]]: ...
 def neighbourhood_tile_arrays(
     atlas: Atlas, settings: ComputeSettings, start: int, stop: int

@@ -18,6 +18,7 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
+from .vertex_radii import interpolate, levels, per_vertex_radii
 from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
 
 @dataclass
@@ -156,6 +157,9 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
     names = feature_names(features)
     opts = resolve_options(options, paper_mode)
     diagonal = atlas.mesh.bounding_box_diagonal
+    if per_vertex_radii(radius, atlas.mesh.n_vertices) is not None:
+        raise InvalidParameterError("one radius per vertex gives values at the vertices: use Atlas.per_vertex or "
+                                    "uvfeat.compute (maps take one radius, or a list of radii for a stack)")
     stack = isinstance(radius, (list, tuple, np.ndarray))
     radii = [resolve_radius(r, diagonal) for r in (radius if stack else [radius])]
     compute_resolution = check_resolution(compute_resolution, "compute_resolution")
@@ -208,11 +212,19 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
     :func:`compute_maps`, read with ``query``."""
     opts = resolve_options(options, paper_mode)
-    if opts["quadrature"] != "surfels" or opts["method"] != "integral":
-        maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
+    own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
+    at_vertices = opts["quadrature"] == "surfels" and opts["method"] == "integral"
+    if not at_vertices:
+        at = radius if own_radii is None else list(levels(own_radii))
+        maps = compute_maps(atlas, features, at, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
-        return {name: feature.per_vertex() for name, feature in maps.items()}
+        if own_radii is None:
+            return {name: feature.per_vertex() for name, feature in maps.items()}
+        return {name: interpolate(np.atleast_2d(feature.per_vertex()), np.array(at), own_radii)
+                for name, feature in maps.items()}
     names = feature_names(features)
+    if own_radii is not None:
+        return _values_at_own_radii(atlas, names, own_radii, samples, compute_resolution, adaptive, seed, opts)
     stack = isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
     resolution = check_resolution(compute_resolution, "compute_resolution")
@@ -228,6 +240,18 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=3)
     return {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
+
+
+def _values_at_own_radii(atlas, names, radii, samples, compute_resolution, adaptive, seed, opts) -> dict:
+    """Each vertex the centre of its own ball of radius ``radii[vertex]`` (surfel sums)."""
+    resolution = check_resolution(compute_resolution, "compute_resolution")
+    settings = _core_settings(names, float(radii.max()), samples, resolution, adaptive, seed, opts)
+    values, _, border = _core.vertex_feature_values(atlas._core, settings, radii)
+    counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
+    texts = notes(counts, atlas.mesh.n_vertices, "the vertices' radii")
+    if texts:
+        warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
+    return dict(zip(names, values))
 
 
 def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:

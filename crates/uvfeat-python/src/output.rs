@@ -5,11 +5,12 @@ use crate::arrays::{flatten, to_numpy};
 use crate::atlas::PyAtlas;
 use crate::error::guarded;
 use crate::settings::{named, PySettings};
-use numpy::PyArrayDyn;
+use numpy::{PyArrayDyn, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use uvfeat_core::output::{
-    neighbourhood_tile, per_corner, per_vertex, per_vertex_directions, vertex_values, FeatureMaps,
+    neighbourhood_tile, per_corner, per_vertex, per_vertex_directions, vertex_values, vertex_values_at_radii,
+    FeatureMaps,
 };
 use uvfeat_core::sampling::SampleCounts;
 use uvfeat_core::settings::{ComputeSettings, VertexQuery};
@@ -176,15 +177,21 @@ pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> P
 type VertexArrays<'py> = (Vec<Bound<'py, PyArrayDyn<f32>>>, Bound<'py, PyArrayDyn<u32>>, Bound<'py, PyArrayDyn<u32>>);
 
 /// Every feature at every input vertex, evaluated at the vertices from the surfels' moments (GIL
-/// released, parallel).
+/// released, parallel); with `radii`, one radius per input vertex instead of the settings' radius.
 #[pyfunction]
+#[pyo3(signature = (atlas, settings, radii=None))]
 pub fn vertex_feature_values<'py>(
     py: Python<'py>,
     atlas: &PyAtlas,
     settings: &PySettings,
+    radii: Option<PyReadonlyArray1<'_, f64>>,
 ) -> PyResult<VertexArrays<'py>> {
     let (core, s) = (atlas.core(), &settings.inner);
-    let at_vertices = guarded(py, || vertex_values(core, s))?;
+    let radii = radii.map(|r| r.as_slice().map(<[f64]>::to_vec)).transpose()?;
+    let at_vertices = guarded(py, || match &radii {
+        Some(radii) => vertex_values_at_radii(core, s, radii),
+        None => vertex_values(core, s),
+    })?;
     let n = at_vertices.counts.len();
     let arrays = at_vertices.values.into_iter().map(|v| to_numpy(py, v, &[n])).collect::<PyResult<_>>()?;
     let count = |get: fn(&SampleCounts) -> u32| to_numpy(py, at_vertices.counts.iter().map(get).collect(), &[n]);

@@ -18,4 +18,4 @@ pub use neighbourhood_tiles::{neighbourhood_tile, NeighbourhoodTile};
 pub use per_vertex::{per_corner, per_vertex, per_vertex_directions};
 pub use screen::{rasterise_screen, ScreenFragments, NO_FACE};
 pub use shaded_view::{shaded_view, ColourScale, Front, ViewFrame, AMBIENT};
-pub use vertex_values::{sums_apply, vertex_values, VertexValues};
+pub use vertex_values::{sums_apply, vertex_values, vertex_values_at_radii, VertexValues};

@@ -35,6 +35,39 @@ pub fn sums_apply(settings: &ComputeSettings) -> bool {
 /// [`UvfeatError::InvalidParameter`] for settings that fail validation or that the sums do not
 /// serve ([`sums_apply`]).
 pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<VertexValues> {
+    values_at(atlas, settings, None)
+}
+
+/// [`vertex_values`] with a radius per input vertex (`radii[i]` for row `i`; rows the file split at
+/// seams are one welded vertex, which takes its first row's radius): each vertex's ball, inner
+/// exclusion and estimators take its own radius, and `settings.radius` is not read.
+///
+/// # Errors
+/// As [`vertex_values`]; [`UvfeatError::InvalidParameter`] when `radii` has not one positive
+/// finite radius per input vertex.
+pub fn vertex_values_at_radii(atlas: &Atlas, settings: &ComputeSettings, radii: &[f64]) -> Result<VertexValues> {
+    let ids = &atlas.topology.vertex_ids;
+    if radii.len() != ids.len() {
+        return Err(UvfeatError::InvalidParameter {
+            name: "radius",
+            reason: format!("{} per-vertex radii for {} vertices", radii.len(), ids.len()),
+        });
+    }
+    if let Some(row) = radii.iter().position(|r| !(r.is_finite() && *r > 0.0)) {
+        return Err(UvfeatError::InvalidParameter {
+            name: "radius",
+            reason: format!("the radius of vertex {row} is {}: radii must be positive and finite", radii[row]),
+        });
+    }
+    let mut welded = vec![f64::NAN; atlas.frame.positions.len()];
+    for (&g, &r) in ids.iter().zip(radii).rev() {
+        welded[g as usize] = r;
+    }
+    values_at(atlas, settings, Some(&welded))
+}
+
+/// Values at the welded vertices, each with radius `radii[vertex]` where given.
+fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -> Result<VertexValues> {
     settings.validate()?;
     if !sums_apply(settings) {
         return Err(UvfeatError::InvalidParameter {
@@ -45,6 +78,7 @@ pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<Vertex
     }
     let (offsets, corners) = corners(atlas);
     let sum_settings = settings.surfel_sums();
+    let own_radius = |vertex: usize| radii.map(|r| ComputeSettings { radius: r[vertex], ..settings.clone() });
     let frame = &atlas.frame;
     atlas.surfels(settings.surface);
     let first_corner = |vertex: usize| corners.get(offsets[vertex]..offsets[vertex + 1]).and_then(|c| c.first());
@@ -69,7 +103,10 @@ pub fn vertex_values(atlas: &Atlas, settings: &ComputeSettings) -> Result<Vertex
             let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
             let (position, normal) = (frame.positions[vertex], frame.normals[vertex]);
             let centre = SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution());
-            let (stats, counts) = surfel_sums(atlas, &centre, &sum_settings);
+            let own = own_radius(vertex);
+            let settings = own.as_ref().unwrap_or(settings);
+            let sums = if own.is_some() { settings.surfel_sums() } else { sum_settings };
+            let (stats, counts) = surfel_sums(atlas, &centre, &sums);
             if counts.valid == 0 {
                 return PixelResult::EMPTY;
             }

@@ -3,7 +3,7 @@
 use crate::support::{atlas, errors, median, patchwork_sphere, unit_sphere};
 use uvfeat_core::evaluation::{evaluate_point, Patterns};
 use uvfeat_core::features::Feature;
-use uvfeat_core::output::{per_vertex, vertex_values, FeatureMaps, VertexValues};
+use uvfeat_core::output::{per_vertex, vertex_values, vertex_values_at_radii, FeatureMaps, VertexValues};
 use uvfeat_core::raster::Surface;
 use uvfeat_core::sampling::Placement;
 use uvfeat_core::sampling::Quadrature;
@@ -82,4 +82,27 @@ fn values_at_the_vertices_agree_with_the_flat_surfels_and_need_them() {
     s.quadrature = Quadrature::Pattern;
     let err = vertex_values(&atlas, &s).unwrap_err().to_string();
     assert!(err.contains("surfels"), "{err}");
+}
+
+#[test]
+fn each_vertex_takes_its_own_radius() {
+    let atlas = atlas(&patchwork_sphere(4), 512);
+    let n = atlas.topology.vertex_ids.len();
+    let radii: Vec<f64> = (0..n).map(|v| if v % 2 == 0 { 0.3 } else { 0.6 }).collect();
+    let own = vertex_values_at_radii(&atlas, &settings(0.6), &radii).unwrap().values;
+    // Exactly the single radius's values at its vertices, whatever `settings.radius` says.
+    for r in [0.3, 0.6] {
+        let single = vertex_values(&atlas, &settings(r)).unwrap().values;
+        for (own, single) in own.iter().zip(&single) {
+            for v in (0..n).filter(|&v| radii[v] == r) {
+                assert_eq!(own[v].to_bits(), single[v].to_bits(), "vertex {v} at r = {r}");
+            }
+        }
+    }
+    let err = vertex_values_at_radii(&atlas, &settings(0.6), &radii[1..]).unwrap_err().to_string();
+    assert!(err.contains("radii for"), "{err}");
+    let mut bad = radii.clone();
+    bad[3] = 0.0;
+    let err = vertex_values_at_radii(&atlas, &settings(0.6), &bad).unwrap_err().to_string();
+    assert!(err.contains("vertex 3"), "{err}");
 }
