@@ -1,6 +1,7 @@
 //! The atlas: a mesh's topology, its rasterised coverage and the current frame's geometry buffers
 //! (DESIGN.md §1.2–§1.3), rebuilt per frame by [`Atlas::update`] without redoing the pre-processing.
 
+use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::frame::Frame;
 use crate::mesh::Topology;
@@ -69,6 +70,7 @@ impl Atlas {
             || Coverage::build(&topology, options.resolution),
         );
         let (frame, patches) = frame?;
+        cancel::check()?;
         Ok(Self {
             topology,
             coverage,

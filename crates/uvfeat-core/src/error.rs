@@ -66,6 +66,10 @@ pub enum UvfeatError {
     /// A texel or parametric point is outside the buffers.
     #[error("point {point:?} is outside the parametric domain [0, 1]^2")]
     PointOutOfDomain { point: [f64; 2] },
+
+    /// The caller asked the computation to stop ([`crate::cancel`]).
+    #[error("interrupted")]
+    Cancelled,
 }
 
 /// Result alias of the core.

@@ -24,6 +24,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod atlas;
+pub mod cancel;
 pub mod distortion;
 pub mod error;
 pub mod evaluation;

@@ -46,6 +46,9 @@ def main(argv: list[str] | None = None) -> int:
     except UvfeatError as exc:
         console().print(f"[red]error:[/red] {exc}")
         return 2
+    except KeyboardInterrupt:
+        console().print("interrupted")
+        return 130
     except OSError as exc:  # an output folder that cannot be made or written, a full disk
         console().print(f"[red]error:[/red] {exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
         return 2

@@ -3,6 +3,7 @@
 
 use super::sheet_area::sheet_area;
 use crate::atlas::Atlas;
+use crate::cancel;
 use crate::error::Result;
 use crate::evaluation::{evaluate_point, prepare, Patterns, PixelResult};
 use crate::features::{CurvatureMethod, Feature};
@@ -143,6 +144,9 @@ impl FeatureMaps {
         let results: Vec<Vec<PixelResult>> = tiles
             .par_iter()
             .map_init(Vec::new, |scratch, texels| {
+                if cancel::requested() {
+                    return Vec::new();
+                }
                 if shared {
                     return evaluate_tile(atlas, settings, &patterns, texels, scratch);
                 }
@@ -153,6 +157,7 @@ impl FeatureMaps {
                     .collect()
             })
             .collect();
+        cancel::check()?;
         // The results by texel, as references: moving the 120-byte results into texel order took
         // a tenth of a 200K-face torus's features.
         let mut pixels = vec![&PixelResult::EMPTY; w * w];

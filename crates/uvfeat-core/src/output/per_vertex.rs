@@ -5,6 +5,7 @@ use super::corners::{corners, Corner};
 use super::feature_map::FeatureMaps;
 use super::vertex_values::{sums_apply, vertex_values};
 use crate::atlas::Atlas;
+use crate::cancel;
 use crate::evaluation::{evaluate_point, prepare, Patterns};
 use crate::features::CurvatureMethod;
 use crate::sampling::Placement;
@@ -113,6 +114,9 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
     geometric.par_chunks_mut(n_features.max(1)).enumerate().for_each_init(
         per_thread,
         |(scratch, means), (vertex, out)| {
+            if cancel::requested() {
+                return;
+            }
             let list = &corners[offsets[vertex]..offsets[vertex + 1]];
             means.reset(n_features);
             let mut found = false;

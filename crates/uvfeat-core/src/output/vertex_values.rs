@@ -4,6 +4,7 @@
 
 use super::corners::corners;
 use crate::atlas::Atlas;
+use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::evaluation::PixelResult;
 use crate::features::{surfel_sums, CurvatureMethod, SurfelCentre};
@@ -96,6 +97,9 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
     let sorted: Vec<PixelResult> = order
         .par_iter()
         .map(|&(_, vertex)| {
+            if cancel::requested() {
+                return PixelResult::EMPTY;
+            }
             let vertex = vertex as usize;
             let Some(corner) = first_corner(vertex) else {
                 return PixelResult::EMPTY;
@@ -113,6 +117,7 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
             PixelResult::estimated(&stats, None, counts, settings)
         })
         .collect();
+    cancel::check()?;
     let mut results = vec![PixelResult::EMPTY; sorted.len()];
     for (&(_, vertex), result) in order.iter().zip(sorted) {
         results[vertex as usize] = result;

@@ -35,6 +35,7 @@ pub use neighbourhood::euclidean_neighbourhood;
 pub use stamped::StampedValues;
 pub use voronoi::{mixed_voronoi_areas, mixed_voronoi_corners};
 
+use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::features::{CurvatureMethod, Feature, GaussianMethod, VolumeWeighting};
 use crate::mesh::{checked_indices, checked_positions};
@@ -233,8 +234,17 @@ impl ReferenceMesh {
         };
         let results: Vec<([f64; 9], u32)> = centres
             .par_iter()
-            .map_init(|| Scratch::new(&context), |scratch, &c| vertex_estimate(c, &context, scratch))
+            .map_init(
+                || Scratch::new(&context),
+                |scratch, &c| {
+                    if cancel::requested() {
+                        return ([f64::NAN; 9], 0);
+                    }
+                    vertex_estimate(c, &context, scratch)
+                },
+            )
             .collect();
+        cancel::check()?;
         let per_query: Vec<usize> = match vertices {
             None => ids.iter().map(|&g| g as usize).collect(),
             Some(list) => (0..list.len()).collect(),

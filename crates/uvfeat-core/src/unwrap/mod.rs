@@ -13,6 +13,7 @@ mod pack;
 mod segment;
 
 use crate::atlas::MAX_RESOLUTION;
+use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::mesh::{
     checked_indices, checked_positions, has_repeated_corner, sorted_half_edges, unit_face_normal, weld_positions,
@@ -90,6 +91,7 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
         }
         None => (welded, own_normals, own_smoothed),
     };
+    cancel::check()?;
     let centroids: Vec<DVec3> =
         welded_faces.par_iter().map(|t| t.iter().map(|&v| charted[v as usize]).sum::<DVec3>() / 3.0).collect();
     let graph = FaceGraph {
@@ -102,7 +104,9 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
         cell: 2.0 * mean_edge_length(&charted, &welded_faces),
     };
     let mut charts = segment::grow_charts(&graph, segment::Cone::new(options.max_angle_degrees));
+    cancel::check()?;
     fragments::merge_fragments(&graph, &mut charts);
+    cancel::check()?;
     pack::pack(
         &mut charts.uvs,
         &charts.uv_faces,

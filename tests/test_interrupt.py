@@ -1,0 +1,95 @@
+"""Ctrl-C stops a long computation within half a second, raises KeyboardInterrupt, and leaves the
+process usable; the command line exits with status 130. Each long path runs in a child process
+that the test sends SIGINT to, as a terminal would."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+pytestmark = pytest.mark.skipif(os.name != "posix", reason="SIGINT to a child process")
+
+#: Each call takes several seconds on 2 cores when left to run (the test fails if one finishes).
+CHILD = textwrap.dedent("""
+    import sys, time
+    import uvfeat
+
+    torus = uvfeat.shapes.torus(2.0, 0.5, 400, 200)
+    atlas = uvfeat.Atlas(torus, resolution=1024)
+    HK = ["mean_curvature", "gaussian_curvature"]
+    RADII = ["4%", "8%", "16%", "24%"] * 4
+    calls = {
+        "shared": lambda: atlas.compute(HK, RADII, compute_resolution=1024),
+        "fast": lambda: atlas.compute(HK, RADII, compute_resolution=1024, sampling="fast"),
+        "exact": lambda: atlas.compute(HK, RADII, compute_resolution=1024, sampling="exact"),
+        "surfel maps": lambda: atlas.compute(HK, RADII, compute_resolution=1024, quadrature="surfels"),
+        "surfel vertices": lambda: atlas.per_vertex(HK, RADII * 4, quadrature="surfels"),
+        "direct query": lambda: [atlas.compute(HK, r, compute_resolution=64)["mean_curvature"].per_vertex("direct")
+                                 for r in RADII],
+        "reference": lambda: uvfeat.reference.compute(torus, HK, "25%"),
+        "converged reference": lambda: uvfeat.converged_reference(torus, HK, "8%", max_levels=3, tolerance=1e-9),
+        "compute": lambda: uvfeat.compute(torus, HK, RADII),
+    }
+    for name, call in calls.items():
+        print("started", name, flush=True)
+        try:
+            call()
+            print("finished", name, flush=True)
+        except KeyboardInterrupt:
+            print("interrupted", time.time(), flush=True)
+    # Still usable: a small call after the interruptions.
+    values = uvfeat.compute(uvfeat.shapes.uv_sphere(1.0, 48, 24), "mean_curvature", "20%", quadrature="surfels")
+    print("usable", float(abs(values["mean_curvature"] - 1).max() < 0.05), flush=True)
+""")
+
+
+def test_ctrl_c_stops_every_long_path_within_half_a_second():
+    child = subprocess.Popen([sys.executable, "-c", CHILD], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    latencies = {}
+    try:
+        for line in child.stdout:
+            word, _, rest = line.strip().partition(" ")
+            if word == "started":
+                name = rest
+                time.sleep(1.0)                     # into the computation
+                sent = time.time()
+                child.send_signal(signal.SIGINT)
+            elif word == "interrupted":
+                latencies[name] = float(rest) - sent
+            elif word == "finished":
+                pytest.fail(f"{rest} ran to its end before the signal: make it longer")
+            elif word == "usable":
+                assert rest == "1.0", "the call after the interruptions is wrong"
+                break
+    finally:
+        child.kill()
+        stderr = child.stderr.read()
+    print({name: round(t, 3) for name, t in latencies.items()})
+    assert len(latencies) == 9, (latencies, stderr)
+    slow = {name: round(t, 2) for name, t in latencies.items() if t > 0.5}
+    assert not slow, f"interrupted later than 0.5 s: {slow}"
+
+
+def test_the_command_line_exits_with_130_and_one_line(tmp_path):
+    import uvfeat
+
+    mesh = uvfeat.shapes.torus(2.0, 0.5, 400, 200)
+    path = tmp_path / "torus.obj"
+    import trimesh
+
+    trimesh.Trimesh(mesh.positions, mesh.faces, process=False).export(path)
+    child = subprocess.Popen([sys.executable, "-m", "uvfeat", "compute", str(path), "--radius", "4%,8%,16%,24%,32%",
+                              "--feature", "all", "--compute-resolution", "1024", "--out", str(tmp_path / "out")],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             env=dict(os.environ, UVFEAT_CACHE_DIR=str(tmp_path / "cache")))
+    time.sleep(6.0)                                 # past the imports, the load and the atlas
+    assert child.poll() is None, child.communicate()
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=30)
+    assert child.returncode == 130, (out, err)
+    said = [line for line in (out + err).splitlines() if line.strip()]
+    assert said[-1] == "interrupted" and "Traceback" not in err, said
