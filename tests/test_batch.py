@@ -219,6 +219,36 @@ def test_inputs_are_files_folders_and_patterns_each_once(tmp_path):
         discover([tmp_path / "empty"])
 
 
+def test_odd_mesh_names_write_only_inside_the_run_folder(tmp_path):
+    names = ["in/my scan.obj", "in/tête à tête.ply", "in/..hidden.obj", "in/a..b.obj", "in/sub/../up.off",
+             "in/$(rm -rf).stl", "in/x.obj", "in/x.ply"]
+    for name in names:
+        path = tmp_path / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("")
+    found = discover([tmp_path / "in"])
+    out = tmp_path / "run"
+    folders = output_folders(found)
+    assert len(set(folders.values())) == len(found) == len(names)
+    for folder in folders.values():
+        inside = os.path.normpath(out / folder)
+        assert inside.startswith(str(out) + os.sep) and ".." not in pathlib.Path(folder).parts, folder
+
+
+def test_a_killed_writer_leaves_no_half_file_and_the_rerun_clears_its_leftovers(tmp_path):
+    from uvfeat.writers import atomic_file
+
+    target = tmp_path / "values.npy"
+    with pytest.raises(RuntimeError), atomic_file(target) as partial:
+        pathlib.Path(partial).write_bytes(b"half a file")
+        raise RuntimeError("killed while writing")
+    assert not target.exists() and list(tmp_path.iterdir()) == []
+    (tmp_path / "values.partial-12345.npy").write_bytes(b"left by a killed process")
+    assert main(["compute", str(uvfeat.examples.spot_path()), "--radius", "20%", "--resolution", "64", "--compute-resolution", "32",
+                 "--samples", "16", "--out", str(tmp_path)]) == 0
+    assert not list(tmp_path.glob("*.partial-*")) and (tmp_path / "summary.json").exists()
+
+
 def test_bad_options_are_named_before_any_cluster_starts(tmp_path, capsys):
     with pytest.raises(InvalidParameterError, match="unknown option"):
         uvfeat.batch(tmp_path, "mean_curvature", "2%", smaples=32)

@@ -5,6 +5,7 @@ settings, which a later batch run compares to decide whether the mesh is finishe
 
 from __future__ import annotations
 
+import glob
 import os
 import time
 from dataclasses import asdict, dataclass, field
@@ -14,7 +15,7 @@ from ._core import __version__
 from .errors import InvalidParameterError
 from .notes import recorded_notes
 from .options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
-from .writers import write_json, write_per_vertex
+from .writers import atomic_file, write_json, write_per_vertex
 
 SUMMARY = "summary.json"
 
@@ -141,6 +142,8 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     from .surface_plot import save_plot
 
     os.makedirs(out, exist_ok=True)
+    for stale in glob.glob(os.path.join(glob.escape(out), "*.partial-*")):  # a killed run's unfinished files
+        os.remove(stale)
     summary = {"uvfeat": __version__, "mesh": mesh.name, "source": source or {}, "warnings": list(load_notes),
                "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
@@ -166,7 +169,8 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
         line_field = first.uv_principal_directions()[:, :, ["d1", "d2"].index(job.directions)] \
             if job.directions and job.pictures else None
         for n, m in maps.items():
-            np.save(os.path.join(out, f"{n}_r{tag}.npy"), m.texture)
+            with atomic_file(os.path.join(out, f"{n}_r{tag}.npy")) as path:
+                np.save(path, m.texture)
             if job.pictures:
                 save_feature_figure(os.path.join(out, f"{n}_r{tag}.png"), n, m.texture, m.radius, mesh.name,
                                     line_field=line_field)
@@ -186,7 +190,5 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
         timings["pictures_3d_s"] = time.perf_counter() - started_3d
         advance("3D pictures ready")
     summary["timings_s"] = dict(timings, total=time.perf_counter() - started)
-    finished = os.path.join(out, SUMMARY)
-    write_json(finished + ".partial", summary)
-    os.replace(finished + ".partial", finished)
+    write_json(os.path.join(out, SUMMARY), summary)
     return atlas, summary

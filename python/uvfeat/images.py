@@ -16,7 +16,10 @@ def save_png(path: str | os.PathLike, rgba: np.ndarray) -> None:
     """Writes an (R, R, 3|4) float image in [0, 1] (buffer orientation) as PNG."""
     from PIL import Image
 
-    Image.fromarray(_to_image(rgba)).save(os.fspath(path))
+    from .writers import atomic_file
+
+    with atomic_file(path) as partial:
+        Image.fromarray(_to_image(rgba)).save(partial)
 
 
 def _with_alpha(rgb: np.ndarray, mask: np.ndarray) -> np.ndarray:
@@ -114,8 +117,11 @@ def save_figure(fig, path: str | os.PathLike, **options) -> None:
     twice (0.06 s of a feature map's 0.26 s), for the same pixels."""
     import matplotlib
 
+    from .writers import atomic_file
+
     crop = fig.get_tightbbox(fig.canvas.get_renderer()).padded(matplotlib.rcParams["savefig.pad_inches"])
-    fig.savefig(os.fspath(path), bbox_inches=crop, pil_kwargs={"compress_level": 1}, **options)
+    with atomic_file(path) as partial:
+        fig.savefig(partial, bbox_inches=crop, pil_kwargs={"compress_level": 1}, **options)
 
 #: Features whose sign matters get a diverging colormap centred on 0.
 SIGNED_FEATURES = {"mean_curvature", "gaussian_curvature", "k1", "k2", "shape_index"}

@@ -11,6 +11,7 @@ import os
 import numpy as np
 
 from ..notes import recorded_notes
+from ..writers import atomic_file
 from .animate import Animation, animate
 
 
@@ -34,10 +35,11 @@ def write_frames(animation: Animation, out: str, start: int, stop: int, on_frame
     os.makedirs(out, exist_ok=True)
     rows = []
     for frame in (animation.frame(k) for k in range(start, stop)):
-        np.savez_compressed(os.path.join(out, f"frame_{frame.index:04d}.npz"), time=frame.time,
-                            positions=frame.positions, **frame.values)
+        with atomic_file(os.path.join(out, f"frame_{frame.index:04d}.npz")) as path:
+            np.savez_compressed(path, time=frame.time, positions=frame.positions, **frame.values)
         for name, feature in frame.maps.items():
-            np.save(map_path(out, name, frame.index, "npy"), feature.texture)
+            with atomic_file(map_path(out, name, frame.index, "npy")) as path:
+                np.save(path, feature.texture)
         rows.append(dict(index=frame.index, time=frame.time, **frame.timings))
         on_frame(frame)
     return rows
