@@ -1,11 +1,12 @@
 """Peak memory of a feature computation in a fresh process (docs/RELIABILITY.md).
 
-    .venv/bin/python benches/bench_memory.py [--faces 1M,5M] [--resolutions 1024,2048] [--quadrature surfels]
+    .venv/bin/python benches/bench_memory.py [--faces 1M,5M,10M] [--resolutions 1024] [--quadrature surfels]
 
-Each cell runs ``uvfeat.compute``'s steps (mesh, Atlas, compute at r = 2 % with a 256² computation
-texture and 64 samples, per-vertex values) on a lat-long torus of about that many faces in a new
-Python process, and reports its peak resident set size (the whole process: interpreter, NumPy,
-mesh arrays and uvfeat's buffers) with the time it took.
+Each cell builds a lat-long torus of about that many faces in a new Python process and calls
+``uvfeat.compute(mesh, ["mean_curvature", "gaussian_curvature"], "2%")`` with the defaults (its
+own UVs, 512² computation texture, 256 samples) and the given buffer resolution. It reports the
+process's peak resident set size (the whole process: interpreter, NumPy, the mesh arrays and
+uvfeat's tables and buffers) and the seconds the call took.
 """
 
 from __future__ import annotations
@@ -22,13 +23,12 @@ import json, resource, sys, time
 import uvfeat
 n_u, n_v, resolution = map(int, sys.argv[1:4])
 quadrature = sys.argv[4]
-started = time.perf_counter()
 shape = uvfeat.shapes.torus(2.0, 0.5, n_u, n_v)
 mesh = uvfeat.Mesh(shape.positions, shape.faces, uvs=shape.uvs, uv_faces=shape.uv_faces)
 del shape
-atlas = uvfeat.Atlas(mesh, resolution)
-values = atlas.compute("mean_curvature", "2%", compute_resolution=256, samples=64,
-                       quadrature=quadrature)["mean_curvature"].per_vertex()
+started = time.perf_counter()
+values = uvfeat.compute(mesh, ["mean_curvature", "gaussian_curvature"], "2%", resolution=resolution,
+                        quadrature=quadrature)
 print(json.dumps({"faces": mesh.n_faces, "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
                   "seconds": time.perf_counter() - started}))
 """
@@ -40,11 +40,11 @@ def count(text: str) -> int:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--faces", default="1M,5M")
-    parser.add_argument("--resolutions", default="1024,2048")
+    parser.add_argument("--faces", default="1M,5M,10M")
+    parser.add_argument("--resolutions", default="1024")
     parser.add_argument("--quadrature", default="pattern", choices=("pattern", "surfels"))
     args = parser.parse_args()
-    print("| faces | buffers | peak RSS MiB | seconds |")
+    print("| faces | buffers | peak RSS MiB | seconds of the call |")
     print("|---|---|---|---|")
     for faces in map(count, args.faces.split(",")):
         n_v = max(3, round(math.sqrt(faces / 4)))  # 2 n_u n_v faces with n_u = 2 n_v

@@ -1,8 +1,10 @@
 //! The atlas corners of every vertex, which the per-vertex values read (DESIGN.md §1.9).
 
 use crate::atlas::Atlas;
+use crate::mesh::Topology;
 use glam::DVec2;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// One atlas corner of a vertex: its UV, chart and the first face round it.
 #[derive(Debug, Clone, Copy)]
@@ -12,34 +14,78 @@ pub struct Corner {
     pub face: u32,
 }
 
-/// The distinct corners of every geometric vertex: the atlas corners, which are numbered in order
-/// of their vertex, so vertex `g` has corners `offsets[g]..offsets[g + 1]`. (Flat, not a list per
-/// vertex: those lists took 140 bytes per vertex, the peak of a 5M-face run.)
-pub fn corners(atlas: &Atlas) -> (Vec<usize>, Vec<Corner>) {
-    let topology = &atlas.topology;
-    // Corner by corner in parallel, from the first of the faces round each (they are listed in face
-    // order), where one thread went over the faces: the 200K-face sphere's and torus's lookups of
-    // two features 4.5-4.8 -> 4.1 ms.
-    let (corners, vertices): (Vec<Corner>, Vec<u32>) = (0..topology.n_corners)
-        .into_par_iter()
-        .map(|corner| {
-            let face = topology.corner_faces[topology.corner_face_start[corner] as usize] as usize;
-            // The face lists the corner among its own (it is round it).
-            let k = topology.corner_groups[face].iter().position(|&c| c == corner as u32).unwrap_or(0);
-            let corner = Corner {
-                uv: topology.walk_faces[face].corners[k],
-                chart: topology.face_chart[face],
-                face: face as u32,
-            };
-            (corner, topology.faces[face][k])
-        })
-        .unzip();
-    let mut offsets = vec![0usize; topology.n_geometric() + 1];
-    for &vertex in &vertices {
-        offsets[vertex as usize + 1] += 1;
+/// The distinct corners of every geometric vertex. The atlas corners are numbered in order of
+/// their vertex, so vertex `g` has corners `offsets[g]..offsets[g + 1]`; each [`Corner`] is read
+/// from the topology when asked for. (Flat, not a list per vertex: those lists took 140 bytes per
+/// vertex, the peak of a 5M-face run; nor a table of corners, 24 bytes a corner.)
+pub struct VertexCorners<'a> {
+    topology: &'a Topology,
+    offsets: Vec<u32>,
+}
+
+impl<'a> VertexCorners<'a> {
+    /// The corners of `atlas`'s vertices.
+    pub fn new(atlas: &'a Atlas) -> Self {
+        let topology = &atlas.topology;
+        let vertices: Vec<u32> = (0..topology.n_corners)
+            .into_par_iter()
+            .map(|corner| {
+                let (face, k) = face_slot(topology, corner);
+                topology.faces[face][k]
+            })
+            .collect();
+        let mut offsets = vec![0u32; topology.n_geometric() + 1];
+        for &vertex in &vertices {
+            offsets[vertex as usize + 1] += 1;
+        }
+        for g in 1..offsets.len() {
+            offsets[g] += offsets[g - 1];
+        }
+        Self { topology, offsets }
     }
-    for g in 1..offsets.len() {
-        offsets[g] += offsets[g - 1];
+
+    /// Number of geometric vertices.
+    pub fn n_vertices(&self) -> usize {
+        self.offsets.len() - 1
     }
-    (offsets, corners)
+
+    /// Number of corners.
+    pub fn n_corners(&self) -> usize {
+        self.topology.n_corners
+    }
+
+    /// The corners of vertex `g`.
+    pub fn range(&self, g: usize) -> Range<usize> {
+        self.offsets[g] as usize..self.offsets[g + 1] as usize
+    }
+
+    /// Corner `c`.
+    #[inline]
+    pub fn corner(&self, c: usize) -> Corner {
+        let (face, k) = face_slot(self.topology, c);
+        Corner {
+            uv: self.topology.walk_faces[face].corners[k],
+            chart: self.topology.face_chart[face],
+            face: face as u32,
+        }
+    }
+
+    /// The corners of vertex `g`.
+    pub fn of(&self, g: usize) -> impl Iterator<Item = Corner> + '_ {
+        self.range(g).map(|c| self.corner(c))
+    }
+
+    /// The first corner of vertex `g`, if it has any.
+    pub fn first(&self, g: usize) -> Option<Corner> {
+        self.of(g).next()
+    }
+}
+
+/// The first face round `corner` and the corner's slot in it (the face lists the corner among
+/// its own).
+#[inline]
+fn face_slot(topology: &Topology, corner: usize) -> (usize, usize) {
+    let face = topology.corner_faces[topology.corner_face_start[corner] as usize] as usize;
+    let k = topology.corner_groups[face].iter().position(|&c| c == corner as u32).unwrap_or(0);
+    (face, k)
 }

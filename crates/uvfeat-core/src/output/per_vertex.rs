@@ -1,7 +1,7 @@
 //! Per-vertex values (DESIGN.md §1.9): chart-masked bilinear lookup of the feature maps at every corner
 //! UV of a vertex, averaged over its corners; direct evaluation where no texel is usable.
 
-use super::corners::{corners, Corner};
+use super::corners::{Corner, VertexCorners};
 use super::feature_map::FeatureMaps;
 use super::vertex_values::{sums_apply, vertex_values};
 use crate::atlas::Atlas;
@@ -84,10 +84,10 @@ impl CornerMeans {
     }
 
     /// Writes the means to `out`, leaving it as it is where no corner had a finite value.
-    fn write(&self, out: &mut [f64]) {
+    fn write(&self, out: &mut [f32]) {
         for ((slot, &sum), &count) in out.iter_mut().zip(&self.sums).zip(&self.counts) {
             if count > 0 {
-                *slot = sum / f64::from(count);
+                *slot = (sum / f64::from(count)) as f32;
             }
         }
     }
@@ -102,11 +102,11 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             return at_vertices.values;
         }
     }
-    let (offsets, corners) = corners(atlas);
+    let corners = VertexCorners::new(atlas);
     let patterns = Patterns::new(settings);
     prepare(atlas, settings);
     let n_features = maps.features.len();
-    let mut geometric = vec![f64::NAN; (offsets.len() - 1) * n_features];
+    let mut geometric = vec![f32::NAN; corners.n_vertices() * n_features];
     // Scratch per rayon job, not per vertex: the lists of corner values took several allocations
     // per vertex, three per corner and one per feature (the 200K-face ellipsoid's two features:
     // 16-22 -> 8-10 ms).
@@ -117,11 +117,10 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             if cancel::requested() {
                 return;
             }
-            let list = &corners[offsets[vertex]..offsets[vertex + 1]];
             means.reset(n_features);
             let mut found = false;
             if query == VertexQuery::Texture {
-                for &Corner { uv, chart, .. } in list {
+                for Corner { uv, chart, .. } in corners.of(vertex) {
                     if lookup(maps, uv, chart, &mut means.corner_values) {
                         means.add_corner();
                         found = true;
@@ -130,7 +129,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             }
             if !found {
                 let placement = Placement::of_vertex(vertex as u32, settings.seed);
-                for &Corner { uv, .. } in list {
+                for Corner { uv, .. } in corners.of(vertex) {
                     let result = evaluate_point(atlas, uv, placement, settings, &patterns, scratch);
                     for (slot, f) in means.corner_values.iter_mut().zip(&maps.features) {
                         *slot = f64::from(result.values[f.index()]);
@@ -142,7 +141,7 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
         },
     );
     let ids = &atlas.topology.vertex_ids;
-    (0..n_features).map(|f| ids.iter().map(|&g| geometric[g as usize * n_features + f] as f32).collect()).collect()
+    (0..n_features).map(|f| ids.iter().map(|&g| geometric[g as usize * n_features + f]).collect()).collect()
 }
 
 /// Every atlas corner's UV and geometric vertex and, per feature, its chart-masked bilinear
@@ -150,17 +149,17 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
 /// corner's chart with samples is among the four nearest): what a texture read at that UV should
 /// give, which a bake's gutters are fitted to.
 pub fn per_corner(atlas: &Atlas, maps: &FeatureMaps) -> (Vec<DVec2>, Vec<u32>, Vec<Vec<f32>>) {
-    let (offsets, corners) = corners(atlas);
+    let corners = VertexCorners::new(atlas);
     let n_features = maps.features.len();
-    let mut values = vec![f64::NAN; corners.len() * n_features];
-    values.par_chunks_mut(n_features.max(1)).zip(&corners).for_each(|(out, corner)| {
+    let mut values = vec![f64::NAN; corners.n_corners() * n_features];
+    values.par_chunks_mut(n_features.max(1)).enumerate().for_each(|(c, out)| {
+        let corner = corners.corner(c);
         lookup(maps, corner.uv, corner.chart, out);
     });
     let per_feature =
         (0..n_features).map(|f| values.iter().skip(f).step_by(n_features).map(|&v| v as f32).collect()).collect();
-    let vertex =
-        offsets.windows(2).enumerate().flat_map(|(g, range)| std::iter::repeat_n(g as u32, range[1] - range[0]));
-    (corners.iter().map(|c| c.uv).collect(), vertex.collect(), per_feature)
+    let vertex = (0..corners.n_vertices()).flat_map(|g| std::iter::repeat_n(g as u32, corners.range(g).len()));
+    ((0..corners.n_corners()).map(|c| corners.corner(c).uv).collect(), vertex.collect(), per_feature)
 }
 
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
@@ -170,15 +169,15 @@ pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[
     let settings = ComputeSettings { method: CurvatureMethod::Fit, standard_errors: false, ..settings.clone() };
     let patterns = Patterns::new(&settings);
     prepare(atlas, &settings);
-    let (offsets, corners) = corners(atlas);
-    let geometric: Vec<[[f32; 3]; 2]> = (0..offsets.len() - 1)
+    let corners = VertexCorners::new(atlas);
+    let geometric: Vec<[[f32; 3]; 2]> = (0..corners.n_vertices())
         .into_par_iter()
         .map_init(Vec::new, |scratch, vertex| {
             // The first corner where the fit succeeds: a corner UV on a chart's edge may fall on
             // a gutter texel of the raster, which has no centre.
             let placement = Placement::of_vertex(vertex as u32, settings.seed);
-            corners[offsets[vertex]..offsets[vertex + 1]]
-                .iter()
+            corners
+                .of(vertex)
                 .map(|c| evaluate_point(atlas, c.uv, placement, &settings, &patterns, scratch).directions)
                 .find(|d| d[0][0].is_finite())
                 .unwrap_or([[f32::NAN; 3]; 2])

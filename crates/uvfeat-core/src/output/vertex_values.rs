@@ -2,7 +2,7 @@
 //! the centre of its own neighbourhood, whose surfels' moments are summed (DESIGN.md §1.4.9), with
 //! no feature map in between (`Atlas.per_vertex` and `uvfeat.compute` with the surfels).
 
-use super::corners::corners;
+use super::corners::VertexCorners;
 use crate::atlas::Atlas;
 use crate::cancel;
 use crate::error::{Result, UvfeatError};
@@ -77,19 +77,18 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                 .into(),
         });
     }
-    let (offsets, corners) = corners(atlas);
+    let corners = VertexCorners::new(atlas);
     let sum_settings = settings.surfel_sums();
     let own_radius = |vertex: usize| radii.map(|r| ComputeSettings { radius: r[vertex], ..settings.clone() });
     let frame = &atlas.frame;
     atlas.surfels(settings.surface);
-    let first_corner = |vertex: usize| corners.get(offsets[vertex]..offsets[vertex + 1]).and_then(|c| c.first());
     // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
     // in turn share most of their surfels, which then come from the cache (the search is bound by
     // memory latency: in the file's order the armadillo took 1.5-1.9x as long).
-    let mut order: Vec<(u64, u32)> = (0..offsets.len() - 1)
+    let mut order: Vec<(u64, u32)> = (0..corners.n_vertices())
         .into_par_iter()
         .map(|vertex| {
-            let key = first_corner(vertex).map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution()));
+            let key = corners.first(vertex).map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution()));
             (key, vertex as u32)
         })
         .collect();
@@ -101,7 +100,7 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                 return PixelResult::EMPTY;
             }
             let vertex = vertex as usize;
-            let Some(corner) = first_corner(vertex) else {
+            let Some(corner) = corners.first(vertex) else {
                 return PixelResult::EMPTY;
             };
             let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
