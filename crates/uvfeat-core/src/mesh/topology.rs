@@ -9,6 +9,7 @@ use super::sides::{boundary_sides, BoundarySide};
 use super::vertex_sort::compressed_rows;
 use super::weld::weld_positions;
 use super::{has_repeated_corner, uv_is_degenerate, uv_signed_area2, TriangleMesh};
+use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -69,6 +70,7 @@ impl Topology {
     /// [`UvfeatError::AllUvDegenerate`] when no face has a usable UV triangle.
     pub fn build(mesh: &TriangleMesh, weld_tolerance: f64) -> Result<Self> {
         let (vertex_ids, n_geometric) = weld_positions(&mesh.positions, weld_tolerance);
+        cancel::check()?;
         let mut representative = vec![u32::MAX; n_geometric];
         for (v, &g) in vertex_ids.iter().enumerate() {
             if representative[g as usize] == u32::MAX {
@@ -85,6 +87,7 @@ impl Topology {
         if degenerate_uv_faces == faces.len() {
             return Err(UvfeatError::AllUvDegenerate { faces: faces.len() });
         }
+        cancel::check()?;
         // The corners' groups need neither the edges nor the charts (a face has a chart unless it
         // is excluded): built beside them (the 200K ellipsoid's topology: 66-100 -> 45-70 ms).
         let (
@@ -109,6 +112,7 @@ impl Topology {
                 (groups, n_corners, start, faces_around)
             },
         );
+        cancel::check()?;
         let mirrored_uv_faces =
             corner_uvs.par_iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();
         let diagnostics = TopologyDiagnostics {

@@ -17,6 +17,7 @@
 //! chart's own faces, which are placed anew with it. Elsewhere the fragment stays a chart.
 
 use super::segment::{boxes_apart, interiors_overlap, uv_box, Charts, FaceGraph, NO_FACE};
+use crate::cancel;
 use crate::mesh::{compressed_rows, has_repeated_corner};
 use glam::DVec2;
 
@@ -91,6 +92,9 @@ pub(super) fn merge_fragments(graph: &FaceGraph, charts: &mut Charts) {
     let mut merged = false;
     let mut visited = vec![false; graph.faces.len()];
     for seed in 0..graph.faces.len() {
+        if cancel::requested() {
+            return;
+        }
         if visited[seed] || !small(seed) {
             continue;
         }

@@ -11,6 +11,7 @@
 //!
 //! A face refused by one chart seeds a later one: charts tile the surface front by front.
 
+use crate::cancel;
 use crate::mesh::has_repeated_corner;
 use glam::{DVec2, DVec3};
 use std::cmp::Reverse;
@@ -97,7 +98,8 @@ pub(super) fn grow_charts(graph: &FaceGraph, cone: Cone) -> Charts {
     let mut growth = Growth::new(graph.positions.len(), n_faces, graph.cell);
     let mut seeds: VecDeque<u32> = VecDeque::new();
     let mut next_unscanned = 0usize;
-    loop {
+    // A stop request leaves the charts unfinished: the caller returns `Cancelled`.
+    while !cancel::requested() {
         let seed = match seeds.pop_front() {
             Some(f) if face_chart[f as usize] == u32::MAX => f,
             Some(_) => continue,
