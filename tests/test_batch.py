@@ -236,7 +236,7 @@ def test_odd_mesh_names_write_only_inside_the_run_folder(tmp_path):
 
 
 def test_a_killed_writer_leaves_no_half_file_and_the_rerun_clears_its_leftovers(tmp_path):
-    from uvfeat.writers import atomic_file
+    from uvfeat.io import atomic_file
 
     target = tmp_path / "values.npy"
     with pytest.raises(RuntimeError), atomic_file(target) as partial:

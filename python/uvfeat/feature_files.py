@@ -13,9 +13,10 @@ from dataclasses import asdict, dataclass, field
 from . import _core
 from ._core import __version__
 from .errors import InvalidParameterError
+from .io import atomic_file
 from .notes import recorded_notes
 from .options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
-from .writers import atomic_file, write_json, write_per_vertex
+from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
 

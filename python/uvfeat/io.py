@@ -1,9 +1,12 @@
-"""Loading meshes from files (glTF/GLB, OBJ, PLY, OFF, STL, ...) through trimesh."""
+"""Loading meshes from files (glTF/GLB, OBJ, PLY, OFF, STL, ...) through trimesh, and writing
+files whole (:func:`atomic_file`)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import warnings
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -179,3 +182,19 @@ def _tile_part_uvs(part_uvs: list[np.ndarray], margin: float = 0.01) -> list[np.
         corner = np.array([k % side, k // side], dtype=np.float64) * cell
         tiled.append(corner + cell * (margin + (1.0 - 2.0 * margin) * unit))
     return tiled
+
+
+@contextlib.contextmanager
+def atomic_file(path: str | os.PathLike) -> Iterator[str]:
+    """A temporary name beside ``path`` to write to, renamed to ``path`` when the block ends
+    without an error and removed otherwise: a file is complete or absent, never half-written, even
+    when the process is killed while writing. The name keeps the extension, from which NumPy,
+    trimesh, Pillow and matplotlib take the format."""
+    stem, extension = os.path.splitext(os.fspath(path))
+    temporary = f"{stem}.partial-{os.getpid()}{extension}"
+    try:
+        yield temporary
+        os.replace(temporary, path)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(temporary)

@@ -4,14 +4,13 @@ NPZ, and JSON summaries, each complete or absent (:func:`atomic_file`). Pictures
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
-from collections.abc import Iterator
 
 import numpy as np
 
 from .images import vertex_colours
+from .io import atomic_file
 from .mesh import Mesh
 
 
@@ -20,22 +19,6 @@ def direction_properties(directions: np.ndarray | None) -> dict[str, np.ndarray]
     if directions is None:
         return {}
     return {f"d{k + 1}_{axis}": directions[:, k, a].astype("float32") for k in range(2) for a, axis in enumerate("xyz")}
-
-
-@contextlib.contextmanager
-def atomic_file(path: str | os.PathLike) -> Iterator[str]:
-    """A temporary name beside ``path`` to write to, renamed to ``path`` when the block ends
-    without an error and removed otherwise: a file is complete or absent, never half-written, even
-    when the process is killed while writing. The name keeps the extension, from which NumPy,
-    trimesh, Pillow and matplotlib take the format."""
-    stem, extension = os.path.splitext(os.fspath(path))
-    temporary = f"{stem}.partial-{os.getpid()}{extension}"
-    try:
-        yield temporary
-        os.replace(temporary, path)
-    finally:
-        with contextlib.suppress(FileNotFoundError):
-            os.remove(temporary)
 
 
 def write_per_vertex(out: str, tag: str, mesh: Mesh, radius: float, values: dict[str, np.ndarray],

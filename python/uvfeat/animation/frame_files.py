@@ -10,8 +10,8 @@ import os
 
 import numpy as np
 
+from ..io import atomic_file
 from ..notes import recorded_notes
-from ..writers import atomic_file
 from .animate import Animation, animate
 
 
