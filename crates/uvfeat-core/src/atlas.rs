@@ -1,5 +1,6 @@
-//! The atlas: a mesh's topology, its rasterised coverage and the current frame's geometry buffers
-//! (DESIGN.md §1.2–§1.3), rebuilt per frame by [`Atlas::update`] without redoing the pre-processing.
+//! Stage 2 of the pipeline: the atlas, a mesh's topology, its rasterised coverage and the current
+//! frame's geometry buffers (DESIGN.md §1.2–§1.3), rebuilt per frame by [`Atlas::update`] without
+//! redoing the pre-processing.
 
 use crate::cancel;
 use crate::error::{Result, UvfeatError};

@@ -1,5 +1,5 @@
-//! Local metric distortion (DESIGN.md §1.3.3, paper eq. 2, decision A5): how many object units one uv
-//! unit covers along the principal axes of the first fundamental form.
+//! Stage 3 of the pipeline: local metric distortion (DESIGN.md §1.3.3, paper eq. 2, decision A5):
+//! how many object units one uv unit covers along the principal axes of the first fundamental form.
 //!
 //! Besides the exact per-face metric of the buffers, the sampler uses a smoothed metric field: the
 //! metric averaged at each atlas corner over the faces around it and interpolated linearly inside

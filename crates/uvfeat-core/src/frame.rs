@@ -1,5 +1,5 @@
-//! Per-frame mesh quantities (DESIGN.md §1.9, animation): everything that depends on positions and is
-//! recomputed for each frame, on top of the reused topology.
+//! Stage 3 of the pipeline: per-frame mesh quantities (DESIGN.md §1.9, animation): everything that
+//! depends on positions and is recomputed for each frame, on top of the reused topology.
 
 use crate::distortion::{corner_metrics, interpolated_metric, seam_corner_metrics, Distortion};
 use crate::error::Result;

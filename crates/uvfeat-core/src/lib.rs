@@ -1,20 +1,24 @@
 //! # uvfeat-core
 //!
 //! Multi-scale geometric features of triangle meshes computed in the mesh's UV parameter space
-//! (Andreadis, Papaioannou, Mavridis, GRAPP 2015). The modules follow the pipeline, each using
-//! only the ones above it (checked by the test suite):
+//! (Andreadis, Papaioannou, Mavridis, GRAPP 2015). The modules follow the six stages of the
+//! pipeline (DESIGN.md §1), numbered as there and in each module's documentation:
 //!
-//! 1. [`mesh`]: validated input, welding, charts, edge classes, seam transition maps; and
-//!    [`unwrap`], an automatic UV atlas for a mesh that has none;
-//! 2. [`distortion`] and [`frame`]: the local metric and the per-frame quantities;
-//! 3. [`raster`]: rasterised coverage and per-frame geometry buffers;
-//! 4. [`atlas`]: the object tying them together, rebuilt per frame;
-//! 5. [`relocation`] and [`lookup`]: seam crossing of parametric points, and the surface there;
-//! 6. [`sampling`]: the Monte Carlo neighbourhood of a parametric point;
-//! 7. [`features`]: the estimators over a neighbourhood's samples;
-//! 8. [`settings`], [`evaluation`], [`tile_evaluation`] and [`output`]: what is asked, the
-//!    features at one point and on a tile of texels, and the maps, per-vertex values and neighbourhood tiles;
-//! 9. [`reference`]: the object-space reference the parametric values are checked against.
+//! 1. mesh and charts: [`mesh`] (validated input, welding, charts, edge classes, seam transition
+//!    maps) and [`unwrap`] (an automatic UV atlas for a mesh that has none);
+//! 2. rasterised buffers: [`raster`] (coverage, per-frame geometry buffers, surfels) and
+//!    [`atlas`], the object tying the stages together, rebuilt per frame;
+//! 3. metric distortion and adjacency: [`distortion`] and [`frame`] (the per-frame quantities);
+//! 4. neighbourhood sampling: [`sampling`], with [`relocation`] of parametric points across seams
+//!    and [`lookup`] of the surface at a parametric point;
+//! 5. feature estimators: [`features`], evaluated at one point by [`evaluation`] and on a tile of
+//!    texels by [`tile_evaluation`];
+//! 6. outputs: [`output`] (feature maps, per-vertex values, neighbourhood tiles, the 3D pictures).
+//!
+//! Beside them: [`settings`] (what a computation is asked), [`reference`](mod@reference) (the object-space
+//! reference the parametric values are checked against), [`cancel`] (stopping a computation part
+//! way), [`shapes`] (analytic meshes) and [`stamps`] (the searches' scratch sets). No two modules
+//! import each other, directly or through others (checked by the test suite).
 //!
 //! Conventions (DESIGN.md §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
 //! at index `j * R + i`, centred at `((i + 0.5)/R, (j + 0.5)/R)`; normals outward by the

@@ -1,6 +1,6 @@
-//! Surface lookup at a parametric point (DESIGN.md §1.3): the exact interpolation of the face the
-//! point's texel shows (`lookup = "triangle"`, default), or the paper's bilinear filtering of the
-//! geometry buffers (`lookup = "bilinear"`).
+//! Stage 4 of the pipeline: surface lookup at a parametric point (DESIGN.md §1.3): the exact
+//! interpolation of the face the point's texel shows (`lookup = "triangle"`, default), or the
+//! paper's bilinear filtering of the geometry buffers (`lookup = "bilinear"`).
 
 use crate::atlas::Atlas;
 use glam::{DVec2, DVec3};

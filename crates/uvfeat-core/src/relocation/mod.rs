@@ -1,5 +1,6 @@
-//! Relocation of parametric points that leave their chart (DESIGN.md §1.5, paper §3.4): where does an
-//! offset of a point end up on the surface, in which chart, and through which seams.
+//! Stage 4 of the pipeline: relocation of parametric points that leave their chart (DESIGN.md §1.5,
+//! paper §3.4): where does an offset of a point end up on the surface, in which chart, and through
+//! which seams.
 //!
 //! Two methods: the exact triangle walk ([`walk`], default) and the texel march of DESIGN.md §1.5.2
 //! ([`march`]). Both take the paper's fast path first: a target well inside the start chart (see

@@ -1,4 +1,5 @@
-//! An automatic UV atlas for a mesh that has none (DESIGN.md §1.1.1), beside the mesh stage.
+//! Stage 1 of the pipeline: an automatic UV atlas for a mesh that has none (DESIGN.md §1.1.1),
+//! beside the mesh.
 //!
 //! The parametric features need of an atlas only that each chart is injective and its distortion
 //! bounded: every face's metric tensor (§1.3) undoes the parametrisation's stretch. Charts whose
