@@ -10,8 +10,8 @@ Surfaces: sphere, torus, ellipsoid at ~50K and ~200K faces, clean and with Gauss
 the normals (std 0.2 % of the diagonal). Radii: 1, 2, 4, 8 % of the clean diagonal. Error:
 mean |estimate - truth| divided by the truth's range (sphere: by its mean). Each method runs in its
 own process with a time limit; a method that hits it on a mesh is not run at larger radii there
-(recorded as a timeout too). ``--repeats N`` runs the methods of each cell in turns N times and
-keeps the median times (on a shared machine one call's time may wander by 30-50 %).
+(recorded as a timeout too). With ``--repeats N`` the methods of each cell alternate N times and
+the median times are kept (on a shared machine one call's time may wander by 30-50 %).
 """
 
 from __future__ import annotations
@@ -61,7 +61,7 @@ def parse_args(argv=None) -> argparse.Namespace:
     parser.add_argument("--radii", default="1,2,4,8", help="percent of the clean bounding-box diagonal")
     parser.add_argument("--timeout", type=float, default=600.0, help="seconds per method and mesh")
     parser.add_argument("--repeats", type=int, default=1,
-                        help="timed runs per method and cell, in turns with the other methods; the median is kept")
+                        help="timed runs per method and cell, alternating with the other methods; the median is kept")
     parser.add_argument("--memory-gb", type=float, default=8.0, help="address-space limit per method process")
     parser.add_argument("--results", default=str(ROOT / "docs/peers/results.json"))
     parser.add_argument("--markdown", default=str(ROOT / "docs/PEERS.md"))
@@ -117,7 +117,7 @@ def benchmark(args, runnable: list[str], results: list[dict], save) -> None:
 
 def measure_cell(args, workers: dict, keys: list[str], surface, shape: str, size: str, noisy: bool, pct: float,
                  stopped: dict) -> list[dict]:
-    """The rows of one surface and radius. With ``--repeats N`` the methods run in turns N times, so
+    """The rows of one surface and radius. With ``--repeats N`` the methods alternate N times, so
     that a slow minute of a shared machine slows every method alike, and each row's times are the
     medians (the values are those of the first run: every method here is deterministic)."""
     rows = {}

@@ -67,7 +67,7 @@ def _ordered(values, order):
 
 
 def summary_table(data: dict) -> list[str]:
-    """The issue-6 question: noisy torus and ellipsoid at 50K, H error at 4 and 8 %, and the time
+    """The headline question: noisy torus and ellipsoid at 50K, H error at 4 and 8 %, and the time
     per noisy 200K-face mesh at 4 %."""
     index = _index(data["results"])
     methods = _ordered([r["method"] for r in data["results"]], list(METHODS))
