@@ -7,6 +7,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 
 import pytest
@@ -16,6 +17,9 @@ pytestmark = pytest.mark.skipif(os.name != "posix", reason="SIGINT to a child pr
 #: Each call takes several seconds on 2 cores when left to run (the test fails if one finishes).
 CHILD = textwrap.dedent("""
     import sys, time
+    # trimesh's own import guards optional modules with `except BaseException`, which swallows a
+    # Ctrl-C that lands in it: imported first, as after any earlier load or converged reference.
+    import trimesh
     import uvfeat
 
     torus = uvfeat.shapes.torus(2.0, 0.5, 400, 200)
@@ -31,7 +35,7 @@ CHILD = textwrap.dedent("""
         "direct query": lambda: [atlas.compute(HK, r, compute_resolution=64)["mean_curvature"].per_vertex("direct")
                                  for r in RADII],
         "reference": lambda: uvfeat.reference.compute(torus, HK, "25%"),
-        "converged reference": lambda: uvfeat.converged_reference(torus, HK, "8%", max_levels=3, tolerance=1e-9),
+        "converged reference": lambda: uvfeat.converged_reference(torus, HK, "8%", max_levels=2, tolerance=1e-9),
         "compute": lambda: uvfeat.compute(torus, HK, RADII),
     }
     for name, call in calls.items():
@@ -82,7 +86,10 @@ def interrupt_each(child_code: str, into: float) -> dict[str, float]:
     seconds from each signal to the child's KeyboardInterrupt."""
     child = subprocess.Popen([sys.executable, "-c", child_code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                              text=True)
-    latencies = {}
+    latencies, name = {}, None
+    # A call that ignores the signal would run for minutes: stop the child, and say which.
+    watchdog = threading.Timer(120, child.kill)
+    watchdog.start()
     try:
         for line in child.stdout:
             word, _, rest = line.strip().partition(" ")
@@ -99,9 +106,11 @@ def interrupt_each(child_code: str, into: float) -> dict[str, float]:
                 assert rest == "1.0", "the call after the interruptions is wrong"
                 break
     finally:
+        watchdog.cancel()
         child.kill()
         stderr = child.stderr.read()
     assert latencies, stderr
+    assert name in latencies, f"{name} was still running two minutes after the signal: {stderr}"
     return latencies
 
 

@@ -93,10 +93,19 @@ impl Atlas {
     }
 
     /// The surfel pyramid of the frame on `surface` (DESIGN.md §1.4.8), built on first use by
-    /// `quadrature = "surfels"`.
+    /// `quadrature = "surfels"`. A build stopped part way ([`cancel`]) is not kept: the call gives
+    /// an empty pyramid, and the next builds it whole.
     pub fn surfels(&self, surface: Surface) -> &Surfels {
-        self.surfels[usize::from(surface == Surface::Smooth)]
-            .get_or_init(|| Surfels::build(&self.topology, &self.frame, self.resolution(), surface))
+        static NONE: Surfels = Surfels { levels: Vec::new() };
+        let cell = &self.surfels[usize::from(surface == Surface::Smooth)];
+        if let Some(surfels) = cell.get() {
+            return surfels;
+        }
+        let built = Surfels::build(&self.topology, &self.frame, self.resolution(), surface);
+        if cancel::requested() {
+            return &NONE;
+        }
+        cell.get_or_init(|| built)
     }
 
     /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, patches; the buffers on

@@ -5,6 +5,7 @@
 use super::blocked::Blocked;
 use super::boundary::{closest_on_segment, rasterise_edge, EdgeHit};
 use super::triangles::{rasterise_triangle, TriangleHit};
+use crate::cancel;
 use crate::mesh::{uv_barycentric, Topology};
 use glam::DVec2;
 use rayon::prelude::*;
@@ -67,8 +68,15 @@ impl Coverage {
             interior_face: Blocked::default(),
             diagnostics: CoverageDiagnostics::default(),
         };
+        // A stop request leaves the coverage unfinished: the atlas it was for is not returned.
         coverage.rasterise_triangles(topology);
+        if cancel::requested() {
+            return coverage;
+        }
         coverage.rasterise_boundaries(topology);
+        if cancel::requested() {
+            return coverage;
+        }
         let distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
         coverage.chart_distance = Blocked::from_rows(&distance, resolution, 0);
         let interior_face: Vec<u32> = (0..n)

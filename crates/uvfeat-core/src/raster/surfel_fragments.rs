@@ -2,6 +2,7 @@
 //! texels of the grid, with its 3D area, centroid and normal; and points along the chart
 //! boundaries that tell which surfels a seam joins and which a mesh border passes through.
 
+use crate::cancel;
 use crate::frame::Frame;
 use crate::mesh::{SideKind, Topology};
 use glam::{DVec2, DVec3};
@@ -91,6 +92,9 @@ pub(super) fn texel_sums(topology: &Topology, frame: &Frame, width: usize, smoot
         .flat_map_iter(|band| {
             let rows = band * BAND_ROWS..=((band + 1) * BAND_ROWS).min(width) - 1;
             let mut pieces = Vec::new();
+            if cancel::requested() {
+                return pieces;
+            }
             for &f in &faces[first[band]..first[band + 1]] {
                 face_fragments(topology, frame, f as usize, width, smooth, rows.clone(), &mut pieces);
             }

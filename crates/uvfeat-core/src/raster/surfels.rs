@@ -12,6 +12,7 @@
 //! closer than a texel in UV are joined), and seams join the surfels on their two sides.
 
 use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints};
+use crate::cancel;
 use crate::frame::Frame;
 use crate::mesh::Topology;
 use glam::{DVec2, DVec3};
@@ -263,7 +264,7 @@ impl Surfels {
         let (seams, borders) = boundary_points(topology, width);
         let mut levels = vec![SurfelLevel::finest(width, &sums, &seams, &borders)];
         drop(sums);
-        while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL) {
+        while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL && !cancel::requested()) {
             let next = last.coarser();
             levels.push(next);
         }

@@ -131,7 +131,7 @@ impl SurfelBall {
         texels: (f64, f64),
         radius: f64,
     ) -> Option<Self> {
-        let finest = &surfels.levels[0];
+        let finest = surfels.levels.first()?;
         let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
         let level = surfel_level(surfels.levels.len(), texels.0, radius, TARGET_SURFELS);
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
