@@ -11,13 +11,13 @@
 //! 3. metric distortion and adjacency: [`distortion`] and [`frame`] (the per-frame quantities);
 //! 4. neighbourhood sampling: [`sampling`], with [`relocation`] of parametric points across seams
 //!    and [`lookup`] of the surface at a parametric point;
-//! 5. feature estimators: [`features`], evaluated at one point by [`evaluation`] and on a tile of
-//!    texels by [`tile_evaluation`];
-//! 6. outputs: [`output`] (feature maps, per-vertex values, neighbourhood tiles, the 3D pictures).
+//! 5. feature estimators: [`features`], evaluated at one point and on a tile of texels by
+//!    [`evaluation`];
+//! 6. outputs: [`output`] (feature maps, per-vertex values, neighbourhood tiles).
 //!
 //! Beside them: [`settings`] (what a computation is asked), [`reference`](mod@reference) (the object-space
 //! reference the parametric values are checked against), [`cancel`] (stopping a computation part
-//! way), [`shapes`] (analytic meshes) and [`stamps`] (the searches' scratch sets). No two modules
+//! way), [`render`] (the 3D pictures of the outputs), [`shapes`] (analytic meshes) and [`stamps`] (the searches' scratch sets). No two modules
 //! import each other, directly or through others (checked by the test suite).
 //!
 //! Conventions (DESIGN.md §0): UV in `[0, 1]^2`, u right, v up; texel `(i, j)` of an `R x R` buffer is
@@ -40,11 +40,11 @@ pub mod output;
 pub mod raster;
 pub mod reference;
 pub mod relocation;
+pub mod render;
 pub mod sampling;
 pub mod settings;
 pub mod shapes;
 pub mod stamps;
-pub mod tile_evaluation;
 pub mod unwrap;
 
 pub use atlas::{Atlas, AtlasOptions};

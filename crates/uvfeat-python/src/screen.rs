@@ -5,7 +5,7 @@ use crate::error::guarded;
 use numpy::{PyArrayDyn, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use uvfeat_core::output::{front_side, shaded_view, ColourScale, Front, ViewFrame};
+use uvfeat_core::render::{front_side, shaded_view, ColourScale, Front, ViewFrame};
 
 /// `(height / s, width / s, 4)` RGBA picture of `values` per vertex on `faces`, whose vertices are
 /// at view coordinates `view` (x right, y up, z towards the viewer), through `palette` over

@@ -1,5 +1,10 @@
-//! Stage 5 of the pipeline: the features at one parametric point: sampling (full or two-stage adaptive, DESIGN.md §1.8), one pass of
-//! statistics, every estimator, and optional batch-means standard errors.
+//! Stage 5 of the pipeline: the features at one parametric point (sampling, full or two-stage
+//! adaptive, DESIGN.md §1.8; one pass of statistics; every estimator; optional batch-means standard
+//! errors), and on a tile of texels at once with the shared lattice ([`evaluate_tile`]).
+
+mod tile;
+
+pub use tile::{evaluate_tile, shared_lattice_applies, texel_uv};
 
 use crate::atlas::Atlas;
 use crate::features::{

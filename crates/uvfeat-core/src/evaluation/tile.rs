@@ -8,9 +8,9 @@
 //! path: those of a group whose lattice would hold far more points than their patterns (balls
 //! smaller than the texel spacing), and those left after a few groups of one chart.
 
+use super::{evaluate_point, Patterns, PixelResult};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
-use crate::evaluation::{evaluate_point, Patterns, PixelResult};
 use crate::features::{lattice_statistics, CurvatureMethod, LatticeNeighbourhood, SumsKernel, VolumeWeighting};
 use crate::relocation::{walk, walk_across, Home, Located, Seams};
 use crate::sampling::{

@@ -5,11 +5,12 @@ use super::sheet_area::sheet_area;
 use crate::atlas::Atlas;
 use crate::cancel;
 use crate::error::Result;
-use crate::evaluation::{evaluate_point, prepare, Patterns, PixelResult};
+use crate::evaluation::{
+    evaluate_point, evaluate_tile, prepare, shared_lattice_applies, texel_uv, Patterns, PixelResult,
+};
 use crate::features::{CurvatureMethod, Feature};
 use crate::sampling::Placement;
 use crate::settings::ComputeSettings;
-use crate::tile_evaluation::{evaluate_tile, shared_lattice_applies, texel_uv};
 use rayon::prelude::*;
 
 /// Side of the square tiles of texels evaluated together, so that their neighbourhoods' reads of

@@ -6,7 +6,7 @@
 //! r = 2 %.
 
 use crate::atlas::Atlas;
-use crate::tile_evaluation::texel_uv;
+use crate::evaluation::texel_uv;
 use rayon::prelude::*;
 
 /// Per texel of the `w`² computation texture on a chart (`chart[t] >= 0`), the mean roughness of
@@ -77,9 +77,9 @@ fn window_sum(table: &[f64], w: usize, (i0, j0, i1, j1): (usize, usize, usize, u
 #[cfg(test)]
 mod tests {
     use super::{sheet_area, summed_area, window_sum};
+    use crate::evaluation::texel_uv;
     use crate::mesh::{Topology, TriangleMesh};
     use crate::shapes::uv_sphere;
-    use crate::tile_evaluation::texel_uv;
     use crate::{Atlas, AtlasOptions};
     use std::sync::Arc;
 

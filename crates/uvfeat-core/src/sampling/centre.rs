@@ -47,7 +47,7 @@ fn centre_from_home(atlas: &Atlas, uv: DVec2, chart: i32, home: Home, lookup: Lo
     })
 }
 
-/// A texel as a group of the shared lattice sees it (`tile_evaluation.rs`): where its centre lies
+/// A texel as a group of the shared lattice sees it (`evaluation/tile.rs`): where its centre lies
 /// and its point and normal read from the home face's f32 patch, relative to the patches' origin.
 /// Only the group's own centre needs the rest of a [`Centre`] (its f64 point and the sampler's
 /// metric): building them for every texel was a tenth of the features (200 ns a texel).

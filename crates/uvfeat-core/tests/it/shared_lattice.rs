@@ -101,7 +101,7 @@ fn the_shared_lattice_is_as_accurate_as_the_exact_path_across_many_charts() {
 fn the_shared_lattice_gives_the_same_maps_on_any_number_of_threads() {
     let atlas = atlas(&torus(2.0, 0.5, 96, 48), 512);
     // At r = 1 the balls wrap round the tube: a group after one whose centre's ball reached past
-    // its disk probes first (`tile_evaluation.rs`), in its tile's order, whichever thread runs it.
+    // its disk probes first (`evaluation/tile.rs`), in its tile's order, whichever thread runs it.
     for radius in [0.25, 1.0] {
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");

@@ -1,0 +1,44 @@
+"""The code and the docs describe the product as it is: no line speaks of the sessions or turns of
+work that built it or of issue numbers (that history lives in git and in the issue tracker)."""
+
+import re
+import subprocess
+
+from conftest import REPO
+
+#: What history sounds like: "session 12", "the session-start code", "in an earlier session",
+#: "issue 37", "issue #4", "(calls) in turns". A pytest "test session" is not history.
+HISTORY = re.compile(
+    r"\bsessions? \d|\bsession-(start|end)\b|\b(this|last|previous|earlier|later|next|same|another) sessions?\b"
+    r"|\bissues? #?\d|\bin turns\b|\bturns? of work\b",
+    re.IGNORECASE,
+)
+
+#: Where the rule holds.
+TREES = ["docs", "crates", "python", "tests", "benches", "README.md"]
+
+
+def tracked_text_files() -> list[str]:
+    listed = subprocess.run(["git", "ls-files", "--", *TREES], cwd=REPO, capture_output=True, text=True, check=True)
+    return [name for name in listed.stdout.splitlines()
+            if not name.endswith((".png", ".npz", ".npy", ".glb", ".ply", ".obj", ".so", ".jpg"))]
+
+
+def test_no_line_speaks_of_sessions_turns_or_issue_numbers():
+    found = []
+    for name in tracked_text_files():
+        try:
+            text = (REPO / name).read_text(encoding="utf-8")
+        except (UnicodeDecodeError, FileNotFoundError):
+            continue
+        found += [f"{name}:{number}: {line.strip()[:120]}" for number, line in enumerate(text.splitlines(), 1)
+                  if HISTORY.search(line)]
+    assert not found, f"{len(found)} lines speak of history:\n" + "\n".join(found[:40])
+
+
+def test_the_rule_catches_history_and_leaves_the_test_session():
+    for line in ("Session 22 (issue 12): faster", "on the session-start code", "as in an earlier session",
+                 "see issue #4", "the calls ran in turns"):
+        assert HISTORY.search(line), line
+    for line in ('@pytest.fixture(scope="session")', "a folder of this test run", "the methods alternate"):
+        assert not HISTORY.search(line), line
