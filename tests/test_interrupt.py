@@ -14,6 +14,18 @@ import pytest
 
 pytestmark = pytest.mark.skipif(os.name != "posix", reason="SIGINT to a child process")
 
+#: What each child runs after setting up ``calls``: each call in turn, saying when it starts and
+#: when it was interrupted.
+RUN_CALLS = """
+for name, call in calls.items():
+    print("started", name, flush=True)
+    try:
+        call()
+        print("finished", name, flush=True)
+    except KeyboardInterrupt:
+        print("interrupted", time.time(), flush=True)
+"""
+
 #: Each call takes several seconds on 2 cores when left to run (the test fails if one finishes).
 CHILD = textwrap.dedent("""
     import sys, time
@@ -38,13 +50,7 @@ CHILD = textwrap.dedent("""
         "converged reference": lambda: uvfeat.converged_reference(torus, HK, "8%", max_levels=2, tolerance=1e-9),
         "compute": lambda: uvfeat.compute(torus, HK, RADII),
     }
-    for name, call in calls.items():
-        print("started", name, flush=True)
-        try:
-            call()
-            print("finished", name, flush=True)
-        except KeyboardInterrupt:
-            print("interrupted", time.time(), flush=True)
+""") + RUN_CALLS + textwrap.dedent("""
     # Still usable: a small call after the interruptions.
     values = uvfeat.compute(uvfeat.shapes.uv_sphere(1.0, 48, 24), "mean_curvature", "20%", quadrature="surfels")
     print("usable", float(abs(values["mean_curvature"] - 1).max() < 0.05), flush=True)
@@ -70,14 +76,9 @@ SET_UP = textwrap.dedent("""
         "atlas": lambda: uvfeat.Atlas(shape, 2048),
     }
     shape.topology
-    for name, call in calls.items():
-        print("started", name, flush=True)
-        try:
-            call()
-            print("finished", name, flush=True)
-        except KeyboardInterrupt:
-            print("interrupted", time.time(), flush=True)
-    print("usable", float(uvfeat.Mesh(shape.positions, shape.faces).topology.n_charts > 0), flush=True)
+""") + RUN_CALLS + textwrap.dedent("""
+    print("usable", float(uvfeat.Mesh(shape.positions, shape.faces, shape.uvs, shape.uv_faces).topology.n_charts == 1),
+          flush=True)
 """)
 
 
@@ -86,7 +87,7 @@ def interrupt_each(child_code: str, into: float) -> dict[str, float]:
     seconds from each signal to the child's KeyboardInterrupt."""
     child = subprocess.Popen([sys.executable, "-c", child_code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                              text=True)
-    latencies, name = {}, None
+    latencies, name, usable = {}, None, False
     # A call that ignores the signal would run for minutes: stop the child, and say which.
     watchdog = threading.Timer(120, child.kill)
     watchdog.start()
@@ -103,13 +104,14 @@ def interrupt_each(child_code: str, into: float) -> dict[str, float]:
             elif word == "finished":
                 pytest.fail(f"{rest} ran to its end before the signal: make it longer")
             elif word == "usable":
-                assert rest == "1.0", "the call after the interruptions is wrong"
+                usable = rest == "1.0"
                 break
     finally:
         watchdog.cancel()
         child.kill()
         stderr = child.stderr.read()
     assert latencies, stderr
+    assert usable, f"the call after the interruptions failed or was wrong: {stderr}"
     assert name in latencies, f"{name} was still running two minutes after the signal: {stderr}"
     return latencies
 

@@ -20,8 +20,9 @@ TREES = ["docs", "crates", "python", "tests", "benches", "README.md"]
 
 def tracked_text_files() -> list[str]:
     listed = subprocess.run(["git", "ls-files", "--", *TREES], cwd=REPO, capture_output=True, text=True, check=True)
-    return [name for name in listed.stdout.splitlines()
-            if not name.endswith((".png", ".npz", ".npy", ".glb", ".ply", ".obj", ".so", ".jpg"))]
+    # This file names the patterns it looks for.
+    return [name for name in listed.stdout.splitlines() if name != "tests/test_no_history.py"
+            and not name.endswith((".png", ".npz", ".npy", ".glb", ".ply", ".obj", ".so", ".jpg"))]
 
 
 def test_no_line_speaks_of_sessions_turns_or_issue_numbers():
