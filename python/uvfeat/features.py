@@ -18,8 +18,8 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
-from .vertex_radii import interpolate, levels, per_vertex_radii
 from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
+from .vertex_radii import interpolate, levels, per_vertex_radii
 
 @dataclass
 class FeatureMap:
@@ -223,35 +223,26 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
         return {name: interpolate(np.atleast_2d(feature.per_vertex()), np.array(at), own_radii)
                 for name, feature in maps.items()}
     names = feature_names(features)
-    if own_radii is not None:
-        return _values_at_own_radii(atlas, names, own_radii, samples, compute_resolution, adaptive, seed, opts)
-    stack = isinstance(radius, (list, tuple, np.ndarray))
+    stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
     resolution = check_resolution(compute_resolution, "compute_resolution")
+    # Per call: the settings' radius, the vertices' own radii (which the core reads instead), a label.
+    if own_radii is not None:
+        calls = [(float(own_radii.max()), own_radii, "the vertices' radii")]
+    else:
+        calls = [(resolve_radius(r, diagonal), None, r if isinstance(r, str) else f"{r:.4g}")
+                 for r in (radius if stack else [radius])]
     per_radius, texts = [], []
-    for r in (radius if stack else [radius]):
-        settings = _core_settings(names, resolve_radius(r, diagonal), samples, resolution, adaptive, seed, opts)
-        values, _, border = _core.vertex_feature_values(atlas._core, settings)
+    for r, radii, label in calls:
+        settings = _core_settings(names, r, samples, resolution, adaptive, seed, opts)
+        values, _, border = _core.vertex_feature_values(atlas._core, settings, radii)
         per_radius.append(values)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
-        texts += notes(counts, atlas.mesh.n_vertices,
-                       r if isinstance(r, str) else f"{r:.4g}")
+        texts += notes(counts, atlas.mesh.n_vertices, label)
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=3)
     return {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
-
-
-def _values_at_own_radii(atlas, names, radii, samples, compute_resolution, adaptive, seed, opts) -> dict:
-    """Each vertex the centre of its own ball of radius ``radii[vertex]`` (surfel sums)."""
-    resolution = check_resolution(compute_resolution, "compute_resolution")
-    settings = _core_settings(names, float(radii.max()), samples, resolution, adaptive, seed, opts)
-    values, _, border = _core.vertex_feature_values(atlas._core, settings, radii)
-    counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
-    texts = notes(counts, atlas.mesh.n_vertices, "the vertices' radii")
-    if texts:
-        warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
-    return dict(zip(names, values))
 
 
 def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:

@@ -24,8 +24,8 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
-from .options import feature_names, resolve_radius
 from .interop import as_mesh, mesh_source
+from .options import feature_names, resolve_radius
 from .mesh import Mesh
 
 #: Gaussian-curvature methods of the reference.
@@ -130,7 +130,8 @@ class Reference:
 
 def compute(mesh, features, radius, *, vertices=None, return_timings: bool = False, **options):
     """Per-vertex object-space reference values of ``mesh`` (a :class:`~uvfeat.Mesh` or any of
-    :data:`uvfeat.interop.ACCEPTED`; one value per vertex of it, as :func:`uvfeat.compute`); see :meth:`Reference.compute`. With ``return_timings=True`` returns
+    :data:`uvfeat.interop.ACCEPTED`; one value per vertex of it, as :func:`uvfeat.compute`); see
+    :meth:`Reference.compute`. With ``return_timings=True`` returns
     ``(values, timings)`` with ``connectivity_s`` (welding and half-edges, untimed in the paper)
     and ``estimation_s``. For several calls on one mesh keep a :class:`Reference`."""
     source = mesh_source(mesh)

@@ -78,8 +78,6 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
         });
     }
     let corners = VertexCorners::new(atlas);
-    let sum_settings = settings.surfel_sums();
-    let own_radius = |vertex: usize| radii.map(|r| ComputeSettings { radius: r[vertex], ..settings.clone() });
     let frame = &atlas.frame;
     atlas.surfels(settings.surface);
     // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
@@ -95,26 +93,31 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
     order.par_sort_unstable();
     let sorted: Vec<PixelResult> = order
         .par_iter()
-        .map(|&(_, vertex)| {
-            if cancel::requested() {
-                return PixelResult::EMPTY;
-            }
-            let vertex = vertex as usize;
-            let Some(corner) = corners.first(vertex) else {
-                return PixelResult::EMPTY;
-            };
-            let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
-            let (position, normal) = (frame.positions[vertex], frame.normals[vertex]);
-            let centre = SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution());
-            let own = own_radius(vertex);
-            let settings = own.as_ref().unwrap_or(settings);
-            let sums = if own.is_some() { settings.surfel_sums() } else { sum_settings };
-            let (stats, counts) = surfel_sums(atlas, &centre, &sums);
-            if counts.valid == 0 {
-                return PixelResult::EMPTY;
-            }
-            PixelResult::estimated(&stats, None, counts, settings)
-        })
+        // One copy of the settings per job, its radius set per vertex where the vertices have their own.
+        .map_init(
+            || settings.clone(),
+            |own, &(_, vertex)| {
+                if cancel::requested() {
+                    return PixelResult::EMPTY;
+                }
+                let vertex = vertex as usize;
+                let Some(corner) = corners.first(vertex) else {
+                    return PixelResult::EMPTY;
+                };
+                let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
+                let (position, normal) = (frame.positions[vertex], frame.normals[vertex]);
+                let centre =
+                    SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution());
+                if let Some(radii) = radii {
+                    own.radius = radii[vertex];
+                }
+                let (stats, counts) = surfel_sums(atlas, &centre, &own.surfel_sums());
+                if counts.valid == 0 {
+                    return PixelResult::EMPTY;
+                }
+                PixelResult::estimated(&stats, None, counts, own)
+            },
+        )
         .collect();
     cancel::check()?;
     let mut results = vec![PixelResult::EMPTY; sorted.len()];
