@@ -1,4 +1,4 @@
-"""Benchmark of the feature pipeline (issue: multi-scale features).
+"""Benchmark of the feature pipeline: its stages, and its time against the radius and the samples.
 
     .venv/bin/python benches/bench_features.py [--mesh PATH] [--feature mean_curvature] [--method fit]
 
