@@ -215,9 +215,11 @@ class Atlas:
         ----------
         features : str or list of str
             Names from :data:`uvfeat.FEATURES` (a comma-separated string or "all" also work).
-        radius : float, str or list
+        radius : float, str, list or ndarray
             Neighbourhood radius in object units, or a percentage of the bounding-box diagonal
-            (``"2%"``); a list gives a scale stack.
+            (``"2%"``); a list gives a scale stack; a NumPy array of one length per row of
+            ``mesh.positions`` gives each texel the radius of its surface point (see
+            :mod:`uvfeat.vertex_radii`).
         samples : int
             Monte Carlo samples per texel (>= 4).
         compute_resolution : int

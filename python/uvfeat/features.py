@@ -19,7 +19,10 @@ from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
 from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
-from .vertex_radii import interpolate, levels, per_vertex_radii
+from .vertex_radii import levels, per_vertex_radii, read_levels, texel_radii
+
+#: How the notes about flagged vertices name the scale when each vertex has its own radius.
+OWN_RADII = "at each vertex's own radius"
 
 @dataclass
 class FeatureMap:
@@ -40,6 +43,11 @@ class FeatureMap:
     sheet, 2 for both sides of a thin part) and ``sheet_area`` the area one sheet holds there (1 on
     a smooth mesh, more where rough facets tilt about the surface); :meth:`vertex_flags` says which
     vertices have neighbourhoods that are truncated, partly missing or hold several sheets.
+
+    With one radius per vertex, ``radius`` is that ``(n_vertices,)`` array and ``levels`` the radii
+    the maps were computed at: each texel reads the levels around the radius of its surface point
+    (the vertices' radii interpolated over its triangle), linearly in ``log r``, and takes its
+    counts and flags from the nearest level; :meth:`per_vertex` reads each vertex at its own radius.
     """
 
     name: str
@@ -55,6 +63,7 @@ class FeatureMap:
     sheet_area: np.ndarray | None = None
     summary: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
+    levels: np.ndarray | None = None
     _atlas: object = field(default=None, repr=False)
     _maps: tuple = field(default=(), repr=False)
     _index: int = field(default=0, repr=False)
@@ -67,7 +76,19 @@ class FeatureMap:
 
     @property
     def is_stack(self) -> bool:
-        return np.ndim(self.radius) > 0
+        return self.texture.ndim == 3
+
+    @property
+    def radius_per_vertex(self) -> bool:
+        return self.levels is not None
+
+    def _by_radius(self, per_level: list, interpolated: bool = True, radii: np.ndarray | None = None):
+        """Values computed per map (``per_level``, one per vertex or per ``radii``) as this map
+        gives them: one radius, a stack, or each at its own radius (interpolated in ``log r``, or
+        the nearest level's where values cannot be blended)."""
+        if self.levels is None:
+            return per_level[0] if not self.is_stack else np.stack(per_level)
+        return read_levels(np.stack(per_level), self.levels, self.radius if radii is None else radii, interpolated)
 
     def per_vertex(self, query: str | None = None) -> np.ndarray:
         """Per-vertex values, ``(n_vertices,)`` (``(n_radii, n_vertices)`` for a stack), one per
@@ -77,8 +98,7 @@ class FeatureMap:
         query = query or self.settings.get("query", "texture")
         if query not in self._cache:  # shared by the features of one computation
             self._cache[query] = [maps.per_vertex(self._atlas._core, query) for maps in self._maps]
-        values = [per_feature[self._index] for per_feature in self._cache[query]]
-        return values[0] if not self.is_stack else np.stack(values)
+        return self._by_radius([per_feature[self._index] for per_feature in self._cache[query]])
 
     def corner_values(self) -> tuple[np.ndarray, np.ndarray]:
         """Every atlas corner (a vertex's distinct UV; seams give a vertex several): its UV
@@ -89,12 +109,18 @@ class FeatureMap:
         if self.is_stack:
             raise InvalidParameterError("corner_values needs one radius; take one map of the stack first")
         if "corners" not in self._cache:  # shared by the features of one computation
-            self._cache["corners"] = self._maps[0].per_corner(self._atlas._core)
-        uvs, vertex, values = self._cache["corners"]
-        corner = values[self._index].astype(np.float64)
+            self._cache["corners"] = [maps.per_corner(self._atlas._core) for maps in self._maps]
+        uvs, vertex, _ = self._cache["corners"][0]
+        mesh = self._atlas.mesh
+        corner_radii = None
+        if self.levels is not None:  # a welded vertex takes its first row's radius
+            radius_of = np.empty(mesh.topology.n_geometric_vertices)
+            radius_of[mesh.vertex_ids[::-1]] = self.radius[::-1]
+            corner_radii = radius_of[vertex]
+        corner = self._by_radius([values[self._index] for _, _, values in self._cache["corners"]],
+                                 radii=corner_radii).astype(np.float64)
         missing = ~np.isfinite(corner)
         if missing.any():
-            mesh = self._atlas.mesh
             by_vertex = np.full(mesh.topology.n_geometric_vertices, np.nan)
             by_vertex[mesh.vertex_ids] = self.per_vertex()
             corner[missing] = by_vertex[vertex[missing]]
@@ -109,7 +135,7 @@ class FeatureMap:
                                                                                m.area_ratio, m.sheet_area))
                                     for m in self._maps]
         per_radius = self._cache["flags"]
-        return per_radius[0] if not self.is_stack else {n: np.stack([f[n] for f in per_radius]) for n in FLAGS}
+        return {n: self._by_radius([f[n] for f in per_radius], interpolated=False) for n in FLAGS}
 
     def per_vertex_directions(self) -> np.ndarray:
         """Principal directions of the fit at every vertex, ``(n_vertices, 2, 3)`` (``(n_radii,
@@ -119,8 +145,7 @@ class FeatureMap:
             raise InvalidParameterError('principal directions need method="fit" in compute()')
         if "directions" not in self._cache:
             self._cache["directions"] = [maps.per_vertex_directions(self._atlas._core) for maps in self._maps]
-        values = self._cache["directions"]
-        return values[0] if not self.is_stack else np.stack(values)
+        return self._by_radius(self._cache["directions"], interpolated=False)
 
     def uv_principal_directions(self) -> np.ndarray:
         """The principal directions as a line field in the UV plane: ``(W_c, W_c, 2, 2)`` unit
@@ -156,12 +181,10 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
     """The work behind :meth:`uvfeat.Atlas.compute`."""
     names = feature_names(features)
     opts = resolve_options(options, paper_mode)
-    diagonal = atlas.mesh.bounding_box_diagonal
-    if per_vertex_radii(radius, atlas.mesh.n_vertices) is not None:
-        raise InvalidParameterError("one radius per vertex gives values at the vertices: use Atlas.per_vertex or "
-                                    "uvfeat.compute (maps take one radius, or a list of radii for a stack)")
-    stack = isinstance(radius, (list, tuple, np.ndarray))
-    radii = [resolve_radius(r, diagonal) for r in (radius if stack else [radius])]
+    own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
+    stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
+    given = list(levels(own_radii)) if own_radii is not None else radius if stack else [radius]
+    radii = [resolve_radius(r, atlas.mesh.bounding_box_diagonal) for r in given]
     compute_resolution = check_resolution(compute_resolution, "compute_resolution")
     if paper_mode and atlas.precision != "f16":
         warnings.warn("paper_mode: the paper stores buffers as half floats; build the Atlas with precision='f16' "
@@ -176,32 +199,45 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
                      seed=int(seed), paper_mode=bool(paper_mode), radii=radii, resolution=atlas.resolution,
                      precision=atlas.precision, features_s=timings)
 
-    def gather(get):
+    if own_radii is not None:
+        texel_radius = texel_radii(atlas, own_radii, compute_resolution)
+        covered = np.isfinite(texel_radius)
+        # Off the charts every map is empty: any level will do there.
+        texel_radius = np.where(covered, texel_radius, radii[0]).ravel()
+
+    def gather(get, interpolated=True):
         arrays = [get(m) for m in all_maps]
-        return np.stack(arrays) if stack else arrays[0]
+        if own_radii is None:
+            return np.stack(arrays) if stack else arrays[0]
+        values = np.stack(arrays)
+        flat = values.reshape(len(arrays), texel_radius.size, *values.shape[3:])
+        return read_levels(flat, np.array(radii), texel_radius, interpolated).reshape(values.shape[1:])
 
     # The neighbourhoods' maps are the same for every feature: one read-only copy serves them all.
     neighbourhood_maps = ["n_valid", "n_missing", "n_border", "area_ratio", "sheet_area"]
     if opts["method"] == "fit":
         neighbourhood_maps += ["principal_directions", "fit_residual"]
-    shared = {name: _readonly(gather(lambda m, name=name: getattr(m, name))) for name in neighbourhood_maps}
+    shared = {name: _readonly(gather(lambda m, name=name: getattr(m, name), interpolated=False))
+              for name in neighbourhood_maps}
     out, cache = {}, {}
     for k, name in enumerate(names):
-        errors = [m.standard_errors(k) for m in all_maps]
+        has_errors = all_maps[0].standard_errors(k) is not None
         out[name] = FeatureMap(
             name=name,
-            radius=np.array(radii) if stack else radii[0],
+            radius=_readonly(own_radii) if own_radii is not None else np.array(radii) if stack else radii[0],
             texture=gather(lambda m, k=k: m.values(k)),
-            standard_error=None if errors[0] is None else (np.stack(errors) if stack else errors[0]),
+            standard_error=gather(lambda m, k=k: m.standard_errors(k)) if has_errors else None,
             **shared,
-            summary=all_maps[0].summary if not stack else [m.summary for m in all_maps],
+            summary=all_maps[0].summary if len(all_maps) == 1 and own_radii is None else [m.summary for m in all_maps],
             settings=described,
+            levels=None if own_radii is None else np.array(radii),
             _atlas=atlas,
             _maps=tuple(all_maps),
             _index=k,
             _cache=cache,
         )
-    _warn_about_flagged_vertices(out[names[0]], radius if stack else [radius])
+    _warn_about_flagged_vertices(out[names[0]], [OWN_RADII] if own_radii is not None
+                                 else radius if stack else [radius])
     return out
 
 
@@ -215,23 +251,18 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
     at_vertices = opts["quadrature"] == "surfels" and opts["method"] == "integral"
     if not at_vertices:
-        at = radius if own_radii is None else list(levels(own_radii))
-        maps = compute_maps(atlas, features, at, samples=samples, compute_resolution=compute_resolution,
+        maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
-        if own_radii is None:
-            return {name: feature.per_vertex() for name, feature in maps.items()}
-        return {name: interpolate(np.atleast_2d(feature.per_vertex()), np.array(at), own_radii)
-                for name, feature in maps.items()}
+        return {name: feature.per_vertex() for name, feature in maps.items()}
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
     resolution = check_resolution(compute_resolution, "compute_resolution")
     # Per call: the settings' radius, the vertices' own radii (which the core reads instead), a label.
     if own_radii is not None:
-        calls = [(float(own_radii.max()), own_radii, "the vertices' radii")]
+        calls = [(float(own_radii.max()), own_radii, OWN_RADII)]
     else:
-        calls = [(resolve_radius(r, diagonal), None, r if isinstance(r, str) else f"{r:.4g}")
-                 for r in (radius if stack else [radius])]
+        calls = [(resolve_radius(r, diagonal), None, _scale(r)) for r in (radius if stack else [radius])]
     per_radius, texts = [], []
     for r, radii, label in calls:
         settings = _core_settings(names, r, samples, resolution, adaptive, seed, opts)
@@ -245,12 +276,15 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     return {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
 
 
+def _scale(radius) -> str:
+    return radius if radius == OWN_RADII else f"at r = {radius if isinstance(radius, str) else f'{radius:.4g}'}"
+
+
 def _warn_about_flagged_vertices(feature: FeatureMap, radii) -> None:
     flags = feature.vertex_flags()
     per_radius = [flags] if not feature.is_stack else [{n: f[k] for n, f in flags.items()} for k in range(len(radii))]
     n_vertices = feature._atlas.mesh.n_vertices
     texts = [text for r, f in zip(radii, per_radius)
-             for text in notes({n: int(v.sum()) for n, v in f.items()}, n_vertices,
-                               r if isinstance(r, str) else f"{r:.4g}")]
+             for text in notes({n: int(v.sum()) for n, v in f.items()}, n_vertices, _scale(r))]
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)

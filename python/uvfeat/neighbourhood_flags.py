@@ -78,17 +78,18 @@ def vertex_flags(mesh, flags: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     return out
 
 
-def notes(counts: dict[str, int], n_vertices: int, radius: str) -> list[str]:
-    """A note per flag with flagged vertices, saying what it means and what to do."""
+def notes(counts: dict[str, int], n_vertices: int, scale: str) -> list[str]:
+    """A note per flag with flagged vertices, saying what it means and what to do; ``scale`` opens
+    it (``"at r = 4%"``, ``"at each vertex's own radius"``)."""
     share = {name: f"{count:,} {'vertex' if count == 1 else 'vertices'} ({100 * count / max(n_vertices, 1):.1f} %)"
              for name, count in counts.items()}
     texts = {
-        "truncated": f"at r = {radius}, {share['truncated']} have neighbourhoods cut by a mesh border: their values "
+        "truncated": f"{scale}, {share['truncated']} have neighbourhoods cut by a mesh border: their values "
                      "are biased (a smaller radius shrinks the band)",
-        "partly_missing": f"at r = {radius}, {share['partly_missing']} have neighbourhoods that lost more than "
+        "partly_missing": f"{scale}, {share['partly_missing']} have neighbourhoods that lost more than "
                           f"{MISSING_SHARE:.0%} of their samples across seams, and part of the surface with them: "
                           "raise max_jumps or re-atlas",
-        "several_sheets": f"at r = {radius}, {share['several_sheets']} have neighbourhoods holding more than one "
+        "several_sheets": f"{scale}, {share['several_sheets']} have neighbourhoods holding more than one "
                           "sheet of the surface (the radius is wider than a thin part there): their values mix both "
                           "sides; use a smaller radius",
     }

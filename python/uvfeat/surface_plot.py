@@ -50,7 +50,8 @@ def per_vertex_rows(mesh, values, radius=None, name: str = "values") -> tuple[np
     from .features import FeatureMap
 
     if isinstance(values, FeatureMap):
-        radius = values.radius if radius is None else radius
+        if radius is None:
+            radius = "r per vertex" if values.radius_per_vertex else values.radius
         values = values.per_vertex()
     values = np.asarray(values, dtype=np.float64)
     rows = values[None] if values.ndim == 1 else values

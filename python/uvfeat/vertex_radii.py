@@ -5,7 +5,8 @@ stays a scale stack) sets each vertex's own ball. With ``quadrature="surfels"`` 
 estimators every vertex is the centre of its own ball of its own radius (DESIGN.md §1.4.9), exactly.
 The map-based paths compute one map per radius, so there the maps are computed at radii spaced
 by at most :data:`LEVEL_RATIO` from the smallest to the largest given radius, and each vertex
-reads the two levels around its radius, interpolated linearly in ``log r``. A constant array is one
+reads the two levels around its radius, interpolated linearly in ``log r``. A feature map's texel
+does the same at the radius of its surface point (:func:`texel_radii`). A constant array is one
 level: the scalar radius's values exactly.
 """
 
@@ -63,3 +64,46 @@ def interpolate(values: np.ndarray, at: np.ndarray, radii: np.ndarray) -> np.nda
     low, high = values[below, columns], values[below + 1, columns]
     # A vertex on a level reads that level alone (its neighbour level may be NaN there).
     return np.where(t == 0, low, np.where(t == 1, high, (1 - t) * low + t * high))
+
+
+def nearest_level(at: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """Per radius, the index of the level of ``at`` nearest to it in ``log r`` (for what cannot be
+    interpolated: counts, flags, directions)."""
+    if len(at) == 1:
+        return np.zeros(len(radii), dtype=np.int64)
+    position = np.interp(np.log(radii), np.log(at), np.arange(len(at), dtype=np.float64))
+    return np.rint(position).astype(np.int64)
+
+
+def texel_radii(atlas, radii: np.ndarray, width: int) -> np.ndarray:
+    """``(width, width)`` radius of the surface point each texel of a computation texture shows
+    (``[j, i]``, v up): the vertices' radii interpolated over the triangle under the texel's centre
+    with its barycentric coordinates (clamped into the triangle where a border texel's centre lies
+    just outside it); NaN off the charts."""
+    face_buffer = atlas.face
+    pick = ((np.arange(width) + 0.5) * face_buffer.shape[0] / width).astype(np.int64)
+    faces = face_buffer[np.ix_(pick, pick)]
+    covered = faces >= 0
+    mesh = atlas.mesh
+    j, i = np.nonzero(covered)
+    centre = np.stack([(i + 0.5) / width, (j + 0.5) / width], axis=-1)
+    uv = mesh.uvs[mesh.uv_faces[faces[covered]]]                     # (n, 3, 2)
+    e1, e2, d = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0], centre - uv[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        b1 = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / det
+        b2 = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / det
+    weights = np.clip(np.nan_to_num(np.stack([1 - b1 - b2, b1, b2], axis=-1), nan=1 / 3), 0.0, None)
+    weights /= np.maximum(weights.sum(axis=-1, keepdims=True), 1e-300)
+    out = np.full((width, width), np.nan)
+    out[covered] = (weights * radii[mesh.faces[faces[covered]]]).sum(axis=-1)
+    return out
+
+
+def read_levels(values: np.ndarray, at: np.ndarray, radii: np.ndarray, interpolated: bool = True) -> np.ndarray:
+    """``values`` (``(n_levels, n, ...)``, level ``k`` at radius ``at[k]``) read at each of the
+    ``n`` ``radii``: :func:`interpolate`\\ d (``(n_levels, n)`` values), or the nearest level's for
+    what cannot be blended."""
+    if interpolated:
+        return interpolate(values, at, radii)
+    return values[nearest_level(at, radii), np.arange(len(radii))]
