@@ -12,7 +12,7 @@ import pytest
 import trimesh
 
 import uvfeat
-from uvfeat.batch.inputs import discover, output_folders
+from uvfeat.batch.inputs import MemoryMesh, batch_inputs, discover, output_folders
 from uvfeat.cli import main
 from uvfeat.errors import InvalidParameterError, MeshFileError
 
@@ -202,6 +202,48 @@ def test_a_killed_worker_loses_no_mesh_and_an_interrupted_run_resumes(meshes, se
     assert "skipped" not in changed.column("status").to_pylist()  # other settings: nothing is finished
 
 
+def test_meshes_in_memory_run_beside_files_and_resume_by_their_arrays(meshes, serial, client, tmp_path):
+    path = sorted(meshes.glob("torus_*.ply"))[0]
+    loaded = trimesh.load(path, process=False)
+    held = [str(path), loaded, uvfeat.Mesh(loaded.vertices, loaded.faces, name="as uvfeat.Mesh"),
+            (np.asarray(loaded.vertices), np.asarray(loaded.faces))]
+    out = tmp_path / "run"
+
+    def run(inputs, **settings):
+        return {row["path"]: row for row in
+                uvfeat.batch(inputs, "mean_curvature", "5%", client=client, out=out, **OPTIONS, **settings).to_pylist()}
+
+    rows = run(held)
+    labels = [str(path), "mesh_1 (in memory)", "as uvfeat.Mesh (in memory)", "mesh_3 (in memory)"]
+    assert sorted(rows) == sorted(labels) and all(row["status"] == "computed" for row in rows.values())
+    for label in labels:  # the same arrays give the serial command's files, wherever they come from
+        assert_same_files(pathlib.Path(rows[label]["output"]), serial / path.stem)
+    assert {pathlib.Path(row["output"]).parent for row in rows.values()} == {out}
+    assert all(row["status"] == "skipped" for row in run(held).values())
+    moved = uvfeat.Mesh(loaded.vertices * 1.5, loaded.faces, name="as uvfeat.Mesh")
+    again = run({"as uvfeat.Mesh": moved, "mesh_3": held[3]})
+    assert again["as uvfeat.Mesh (in memory)"]["status"] == "computed" and again["mesh_3 (in memory)"]["status"] == "skipped"
+
+
+def test_a_mesh_whose_workers_keep_dying_becomes_a_failed_row_with_the_cause(client, tmp_path):
+    from uvfeat.batch.cluster import run_tasks
+    from uvfeat.batch.run import _lost
+    from uvfeat.feature_files import FeatureJob
+
+    def dies_with_its_worker(*call):  # as a worker out of memory or killed from outside
+        os._exit(9)
+
+    before = set(client.run(os.getpid).values())
+    job = FeatureJob(features="mean_curvature", radii="5%", **OPTIONS)
+    calls = [("poison", str(tmp_path / "poison"), job, {})]
+    (index, row), = list(run_tasks(client, dies_with_its_worker, calls,
+                                   lambda call, error: dict(_lost(call, error), error_type=type(error))))
+    assert index == 0 and row["status"] == "failed" and row["path"] == "poison"
+    assert row["error_type"] is distributed.KilledWorker and "workers computing it died" in row["error"]
+    client.wait_for_workers(2, timeout=120)
+    assert not before & set(client.run(os.getpid).values())  # each worker that took it died and was replaced
+
+
 def test_inputs_are_files_folders_and_patterns_each_once(tmp_path):
     for name in ("a/x.obj", "a/b/y.ply", "a/b/y.stl", "c/z.off", "a/notes.txt"):
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
@@ -230,6 +272,10 @@ def test_odd_mesh_names_write_only_inside_the_run_folder(tmp_path):
     out = tmp_path / "run"
     folders = output_folders(found)
     assert len(set(folders.values())) == len(found) == len(names)
+    held = batch_inputs({name: uvfeat.shapes.plane(4, 4) for name in ("..", "../up", "a/b", "C:\\x", ".", "")})
+    assert all(isinstance(item, MemoryMesh) for item in held)
+    folders |= output_folders(held)
+    assert len(set(folders.values())) == len(found) + len(held)
     for folder in folders.values():
         inside = os.path.normpath(out / folder)
         assert inside.startswith(str(out) + os.sep) and ".." not in pathlib.Path(folder).parts, folder

@@ -149,24 +149,43 @@ def load(path: str | os.PathLike, *, uv: str = "auto", resolution: int = 1024, n
     part_uvs = [_uvs_of(g) for g in parts]
     name = os.path.basename(path)
     has_uvs = all(u is not None for u in part_uvs)
+    if not has_uvs and uv == "require":
+        missing = "some of its meshes have" if any(u is not None for u in part_uvs) else "it has"
+        raise UVError(f"{name}: {missing} no UV coordinates; use uv='auto' for an automatic atlas")
     if uv in UNWRAP_METHODS or not has_uvs:
-        if uv == "require":
-            missing = "some of its meshes have" if any(u is not None for u in part_uvs) else "it has"
-            raise UVError(f"{name}: {missing} no UV coordinates; use uv='auto' for an automatic atlas")
-        mesh = Mesh(positions, faces, name=name)
-        return mesh.with_atlas(resolution=resolution, method=uv if uv in UNWRAP_METHODS else UNWRAP_METHODS[0])
+        return with_uv_policy(Mesh(positions, faces, name=name), uv, resolution)
     if len(parts) > 1:
         part_uvs = _tile_part_uvs(part_uvs)
         warnings.warn(f"{name}: {len(parts)} meshes merged; their UV layouts were tiled side by side into one "
                       "atlas so they do not overlap", UVWarning, stacklevel=2)
     mesh = Mesh(positions, faces, np.concatenate(part_uvs), name=name, normalize_uv=normalize_uv)
+    return with_uv_policy(mesh, uv, resolution)
+
+
+def with_uv_policy(mesh: Mesh, uv: str = "auto", resolution: int = 1024) -> Mesh:
+    """``mesh`` with :func:`load`'s ``uv`` policy applied: its own UVs (checked for overlaps with
+    ``"auto"``), or an automatic atlas (vertex order unchanged) where it has none or ``uv`` names an
+    unwrapper.
+
+    Raises
+    ------
+    UVError
+        ``uv="require"`` and the mesh has no UVs.
+    """
+    if uv not in UV_POLICIES:
+        raise ValueError(f"uv must be one of {UV_POLICIES}, got {uv!r}")
+    if uv in UNWRAP_METHODS or not mesh.has_uvs:
+        if uv == "require":
+            raise UVError(f"{mesh.name}: it has no UV coordinates; use uv='auto' for an automatic atlas")
+        bare = Mesh(mesh.positions, mesh.faces, name=mesh.name) if mesh.has_uvs else mesh
+        return bare.with_atlas(resolution=resolution, method=uv if uv in UNWRAP_METHODS else UNWRAP_METHODS[0])
     if uv == "auto":
         share = Atlas(mesh, OVERLAP_CHECK_RESOLUTION).overlap_share
         if share > MAX_OVERLAP_SHARE:
-            warnings.warn(f"{name}: the file's UVs overlap on {share:.1%} of their texels, so the features there would "
-                          "mix surface points; re-atlased (vertex order unchanged; uv='require' keeps "
-                          "the file's UVs)", UVWarning, stacklevel=2)
-            return Mesh(positions, faces, name=name).with_atlas(resolution=resolution)
+            warnings.warn(f"{mesh.name}: the UVs overlap on {share:.1%} of their texels, so the features there "
+                          "would mix surface points; re-atlased (vertex order unchanged; uv='require' keeps "
+                          "the UVs)", UVWarning, stacklevel=3)
+            return Mesh(mesh.positions, mesh.faces, name=mesh.name).with_atlas(resolution=resolution)
     return mesh
 
 

@@ -11,9 +11,9 @@ import os
 from ..errors import InvalidParameterError
 from ..feature_files import FeatureJob
 from .cluster import check_workers, dask_client, distributed, run_tasks
-from .inputs import discover, output_folders
+from .inputs import batch_inputs, output_folders
 from .table import write_run_table
-from .task import failed_row, finished_summary, mesh_task, source_record, summary_row
+from .task import failed_row, finished_summary, label_of, mesh_task, source_of, summary_row
 
 JOB_OPTIONS = tuple(f.name for f in dataclasses.fields(FeatureJob) if f.name not in ("features", "radii", "pictures"))
 
@@ -25,8 +25,11 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
 
     Parameters
     ----------
-    paths : str or list
-        Mesh files, folders (searched recursively for mesh files) and glob patterns.
+    paths : str, list or dict
+        Mesh files, folders (searched recursively for mesh files) and glob patterns; meshes held in
+        memory (any of :data:`uvfeat.interop.ACCEPTED`, in the list, named after their ``name``
+        attribute, or as a ``{name: mesh}`` dict), sent to the workers whole and written under
+        their names (rows ``"<name> (in memory)"``; unchanged arrays count as finished).
     features, radius
         As for ``uvfeat compute``: names (or "all"), one radius or several (a list or "1%,4%").
     client : distributed.Client, optional
@@ -61,14 +64,15 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
     job = FeatureJob(features=features, radii=radius, pictures=pictures, **options)
     if client is None and scheduler is None:
         check_workers(workers)
-    meshes, out = discover(paths), os.path.abspath(out)  # workers may run in another folder
-    folders = {p: os.path.join(out, f) for p, f in output_folders(meshes).items()}
+    items, out = batch_inputs(paths), os.path.abspath(out)  # workers may run in another folder
+    meshes = [label_of(item) for item in items]
+    folders = {p: os.path.join(out, f) for p, f in output_folders(items).items()}
     rows, pending = {}, []
-    for path in meshes:
-        source = source_record(path)
+    for item, path in zip(items, meshes):
+        source = source_of(item)
         summary = None if force else finished_summary(folders[path], job, source)
         if summary is None:
-            pending.append((path, folders[path], job, source))
+            pending.append((item, folders[path], job, source))
         else:
             rows[path] = summary_row(path, folders[path], summary, "skipped")
     report = on_row or (lambda row: None)
@@ -82,7 +86,7 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
                 report(row)
             if running is not None:
                 for index, row in run_tasks(running, mesh_task, pending, _lost):
-                    rows[pending[index][0]] = row
+                    rows[label_of(pending[index][0])] = row
                     report(row)
     finally:
         table = write_run_table([rows[p] for p in meshes if p in rows], out)
@@ -90,7 +94,7 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
 
 
 def _lost(call: tuple, error: BaseException) -> dict:
-    path, folder = call[:2]
+    path, folder = label_of(call[0]), call[1]
     if isinstance(error, distributed().KilledWorker):
         return failed_row(path, folder, f"the workers computing it died ({error}); too large for a worker's memory?")
     return failed_row(path, folder, error)  # the task itself failed on its worker: its own error

@@ -9,6 +9,8 @@ import os
 import time
 
 from ..feature_files import SUMMARY, FeatureJob, load_with_notes, radius_tag, write_feature_files
+from ..notes import recorded_notes
+from .inputs import MemoryMesh
 
 
 def source_record(path: str) -> dict:
@@ -49,14 +51,30 @@ def failed_row(path: str, folder: str, error: BaseException | str, seconds: floa
     return {"path": path, "output": folder, "status": "failed", "error": message, "total_s": seconds}
 
 
-def mesh_task(path: str, folder: str, job: FeatureJob, source: dict) -> dict:
-    """Computes one mesh; any failure of this mesh becomes its row, so the run goes on."""
+def source_of(item: str | MemoryMesh) -> dict:
+    """What identifies an input: a changed file or changed arrays are computed again."""
+    return source_record(item) if isinstance(item, str) else item.record()
+
+
+def label_of(item: str | MemoryMesh) -> str:
+    """An input's row key and ``path`` column."""
+    return item if isinstance(item, str) else item.label
+
+
+def mesh_task(item: str | MemoryMesh, folder: str, job: FeatureJob, source: dict) -> dict:
+    """Computes one mesh (a path or a mesh sent from memory); any failure of this mesh becomes its
+    row, so the run goes on."""
     started = time.perf_counter()
+    path = label_of(item)
     # Until the new files are complete no summary may claim them (a run killed half-way recomputes)
     with contextlib.suppress(FileNotFoundError):
         os.remove(os.path.join(folder, SUMMARY))
     try:
-        mesh, notes = load_with_notes(path, job.uv, job.resolution, job.strict_uv)
+        if isinstance(item, str):
+            mesh, notes = load_with_notes(item, job.uv, job.resolution, job.strict_uv)
+        else:
+            with recorded_notes() as notes:
+                mesh = item.load(job.uv, job.resolution)
         _, summary = write_feature_files(mesh, job, folder, notes, started, source=source)
     except Exception as exc:  # unreadable, degenerate, no UVs, ...: reported in the table
         return failed_row(path, folder, exc, time.perf_counter() - started)
