@@ -235,7 +235,7 @@ def test_a_mesh_whose_workers_keep_dying_becomes_a_failed_row_with_the_cause(cli
 
     before = set(client.run(os.getpid).values())
     job = FeatureJob(features="mean_curvature", radii="5%", **OPTIONS)
-    calls = [("poison", str(tmp_path / "poison"), job, {})]
+    calls = [("poison", "poison.obj", str(tmp_path / "poison"), job, {})]
     (index, row), = list(run_tasks(client, dies_with_its_worker, calls,
                                    lambda call, error: dict(_lost(call, error), error_type=type(error))))
     assert index == 0 and row["status"] == "failed" and row["path"] == "poison"

@@ -49,6 +49,8 @@ CHILD = textwrap.dedent("""
         "reference": lambda: uvfeat.reference.compute(torus, HK, "25%"),
         "converged reference": lambda: uvfeat.converged_reference(torus, HK, "8%", max_levels=2, tolerance=1e-9),
         "compute": lambda: uvfeat.compute(torus, HK, RADII),
+        "animate": lambda: [frame["mean_curvature"] for frame in uvfeat.animate(
+            torus, HK, RADII, frames=[torus.positions * (1 + 0.01 * k) for k in range(40)], compute_resolution=1024)],
     }
 """) + RUN_CALLS + textwrap.dedent("""
     # Still usable: a small call after the interruptions.
@@ -59,9 +61,38 @@ CHILD = textwrap.dedent("""
 
 def test_ctrl_c_stops_every_long_path_within_half_a_second():
     latencies = interrupt_each(CHILD, 1.0)
-    assert len(latencies) == 9, latencies
+    assert len(latencies) == 10, latencies
     slow = {name: round(t, 2) for name, t in latencies.items() if t > 0.5}
     assert not slow, f"interrupted later than 0.5 s: {slow}"
+
+
+#: A batch on its own local cluster: "started" once the workers compute (starting the cluster
+#: takes seconds). Ctrl-C ends the workers' processes too, so none is left behind.
+BATCH = textwrap.dedent("""
+    import os, sys, time
+    import psutil, uvfeat
+
+    if __name__ == "__main__":
+        torus = uvfeat.shapes.torus(2.0, 0.5, 400, 200)
+        try:
+            uvfeat.batch({f"torus {k}": torus for k in range(8)}, ["mean_curvature"], ["4%", "8%", "16%"] * 4,
+                         out=sys.argv[1], workers=2, resolution=1024, compute_resolution=1024,
+                         on_start=lambda n, client: print("started batch", flush=True))
+            print("finished batch", flush=True)
+        except KeyboardInterrupt:
+            print("interrupted", time.time(), flush=True)
+        time.sleep(1.0)
+        left = [p.pid for p in psutil.Process().children(recursive=True)
+                if "resource_tracker" not in " ".join(p.cmdline())]
+        print("usable", float(not left), flush=True)
+""")
+
+
+def test_ctrl_c_stops_a_batch_and_its_workers(tmp_path):
+    script = tmp_path / "batch.py"
+    script.write_text(BATCH)
+    latencies = interrupt_each([str(script), str(tmp_path / "out")], 2.0)
+    assert latencies["batch"] < 0.5, latencies
 
 
 #: The set-up of a 2M-face mesh: each step takes about a second on 2 cores.
@@ -82,10 +113,11 @@ SET_UP = textwrap.dedent("""
 """)
 
 
-def interrupt_each(child_code: str, into: float) -> dict[str, float]:
-    """Runs ``child_code``, sends SIGINT ``into`` seconds after each "started" line, and returns the
-    seconds from each signal to the child's KeyboardInterrupt."""
-    child = subprocess.Popen([sys.executable, "-c", child_code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+def interrupt_each(child: str | list[str], into: float) -> dict[str, float]:
+    """Runs ``child`` (code, or a script and its arguments), sends SIGINT ``into`` seconds after
+    each "started" line, and returns the seconds from each signal to the child's KeyboardInterrupt."""
+    arguments = ["-c", child] if isinstance(child, str) else child
+    child = subprocess.Popen([sys.executable, *arguments], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                              text=True)
     latencies, name, usable = {}, None, False
     # A call that ignores the signal would run for minutes: stop the child, and say which.

@@ -94,7 +94,24 @@ def dask_client(client=None, scheduler: str | None = None, workers: int | None =
     except (OSError, RuntimeError, TimeoutError) as exc:
         raise ClusterError(f"cannot start a local Dask cluster of {check_workers(workers)} workers: {exc}") from exc
     with cluster, dask.Client(cluster) as client:
-        yield client
+        try:
+            yield client
+        except KeyboardInterrupt:
+            _stop_workers(cluster)
+            raise
+
+
+def _stop_workers(cluster) -> None:
+    """Ends the local workers' processes at once: closing them politely waits for the task each one
+    is computing (seconds), while Ctrl-C must stop a run within half a second."""
+    import signal
+
+    for nanny in list(cluster.workers.values()):
+        nanny.auto_restart = False
+        pid = getattr(getattr(getattr(nanny, "process", None), "process", None), "pid", None)
+        if pid:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
 
 
 def run_tasks(client, function, calls: list[tuple], on_lost):

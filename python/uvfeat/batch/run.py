@@ -11,7 +11,7 @@ import os
 from ..errors import InvalidParameterError
 from ..feature_files import FeatureJob
 from .cluster import check_workers, dask_client, distributed, run_tasks
-from .inputs import batch_inputs, output_folders
+from .inputs import MemoryMesh, batch_inputs, output_folders
 from .table import write_run_table
 from .task import failed_row, finished_summary, label_of, mesh_task, source_of, summary_row
 
@@ -72,7 +72,7 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
         source = source_of(item)
         summary = None if force else finished_summary(folders[path], job, source)
         if summary is None:
-            pending.append((item, folders[path], job, source))
+            pending.append((path, item, folders[path], job, source))
         else:
             rows[path] = summary_row(path, folders[path], summary, "skipped")
     report = on_row or (lambda row: None)
@@ -85,8 +85,11 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
             for row in rows.values():
                 report(row)
             if running is not None:
-                for index, row in run_tasks(running, mesh_task, pending, _lost):
-                    rows[label_of(pending[index][0])] = row
+                # Arrays held in memory go to the cluster once each, not inside the task graph.
+                calls = [(path, running.scatter(item) if isinstance(item, MemoryMesh) else item, *rest)
+                         for path, item, *rest in pending]
+                for index, row in run_tasks(running, mesh_task, calls, _lost):
+                    rows[pending[index][0]] = row
                     report(row)
     finally:
         table = write_run_table([rows[p] for p in meshes if p in rows], out)
@@ -94,7 +97,7 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
 
 
 def _lost(call: tuple, error: BaseException) -> dict:
-    path, folder = label_of(call[0]), call[1]
+    path, folder = call[0], call[2]
     if isinstance(error, distributed().KilledWorker):
         return failed_row(path, folder, f"the workers computing it died ({error}); too large for a worker's memory?")
     return failed_row(path, folder, error)  # the task itself failed on its worker: its own error

@@ -61,11 +61,10 @@ def label_of(item: str | MemoryMesh) -> str:
     return item if isinstance(item, str) else item.label
 
 
-def mesh_task(item: str | MemoryMesh, folder: str, job: FeatureJob, source: dict) -> dict:
-    """Computes one mesh (a path or a mesh sent from memory); any failure of this mesh becomes its
-    row, so the run goes on."""
+def mesh_task(path: str, item: str | MemoryMesh, folder: str, job: FeatureJob, source: dict) -> dict:
+    """Computes one mesh (a file, or a mesh sent from memory) and answers its row, labelled
+    ``path``; any failure of this mesh becomes its row, so the run goes on."""
     started = time.perf_counter()
-    path = label_of(item)
     # Until the new files are complete no summary may claim them (a run killed half-way recomputes)
     with contextlib.suppress(FileNotFoundError):
         os.remove(os.path.join(folder, SUMMARY))
