@@ -148,13 +148,14 @@ def interrupt_each(child: str | list[str], into: float) -> dict[str, float]:
     return latencies
 
 
-def test_ctrl_c_stops_the_set_up_of_a_large_mesh_within_a_second():
-    # The set-up stops between its stages (the welding sort, the edge classes, the rasterisation),
-    # which take up to a few tenths of a second each at 2M faces, more on a loaded machine.
+def test_ctrl_c_stops_the_set_up_of_a_large_mesh_within_half_a_second():
+    # The set-up stops between its steps and skips the rest of its per-face loops; its longest
+    # step without a check (the welding sort, the frame's normals and metrics) takes about 0.3 s
+    # at 2M faces on 2 idle cores.
     latencies = interrupt_each(SET_UP, 0.3)
     assert len(latencies) == 3, latencies
-    slow = {name: round(t, 2) for name, t in latencies.items() if t > 1.0}
-    assert not slow, f"interrupted later than 1 s: {slow}"
+    slow = {name: round(t, 2) for name, t in latencies.items() if t > 0.5}
+    assert not slow, f"interrupted later than 0.5 s: {slow}"
 
 
 def test_the_command_line_exits_with_130_and_one_line(tmp_path):

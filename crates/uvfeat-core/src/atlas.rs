@@ -63,10 +63,10 @@ impl Atlas {
         // after the join left one core idle for 20-30 ms of a 200K-face mesh's atlas).
         let (frame, coverage) = rayon::join(
             || {
-                Frame::new(&topology, positions).map(|frame| {
-                    let patches = FacePatches::new(&topology, &frame);
-                    (frame, patches)
-                })
+                let frame = Frame::new(&topology, positions)?;
+                cancel::check()?;
+                let patches = FacePatches::new(&topology, &frame);
+                Ok((frame, patches))
             },
             || Coverage::build(&topology, options.resolution),
         );

@@ -1,6 +1,7 @@
 //! Edge classes (DESIGN.md §1.2.4): every geometric edge is interior, seam, border or non-manifold.
 
 use super::vertex_sort::sort_by_vertex;
+use crate::cancel;
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -84,6 +85,9 @@ pub(crate) fn classify_edges(faces: &[[u32; 3]], corner_uvs: &[[DVec2; 3]], dege
     // Edge by edge in parallel, the pieces joined in order (one thread took 15-20 ms of a
     // 200K-face mesh's pre-processing here).
     let classify = |mut classes: EdgeClasses, group: &[(u64, u32)]| {
+        if cancel::requested() {
+            return classes; // the caller checks for the stop before using them
+        }
         let live = || group.iter().map(|&(_, h)| side(h)).filter(|s| !degenerate[s.face as usize]);
         let n_live = live().count();
         let mut sides = live();

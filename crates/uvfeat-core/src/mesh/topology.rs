@@ -90,28 +90,31 @@ impl Topology {
         cancel::check()?;
         // The corners' groups need neither the edges nor the charts (a face has a chart unless it
         // is excluded): built beside them (the 200K ellipsoid's topology: 66-100 -> 45-70 ms).
-        let (
-            (classes, face_chart, n_charts, sides, walk_faces),
-            (corner_groups, n_corners, corner_face_start, corner_faces),
-        ) = rayon::join(
-            || {
+        // Each side checks for a stop between its steps, which take tenths of a second at 2M faces.
+        let (edges_and_charts, corners) = rayon::join(
+            || -> Result<_> {
                 let classes = classify_edges(&faces, &corner_uvs, &excluded);
+                cancel::check()?;
                 let pairs = classes.interior_pairs.iter().map(|(x, y)| (x.face, y.face));
                 let (face_chart, n_charts) = chart_ids(faces.len(), pairs, &excluded);
+                cancel::check()?;
                 let sides = boundary_sides(&classes.boundary, &face_chart);
                 let walk_faces = walk_faces(&corner_uvs, &face_links(faces.len(), &classes.interior_pairs, &sides));
-                (classes, face_chart, n_charts, sides, walk_faces)
+                Ok((classes, face_chart, n_charts, sides, walk_faces))
             },
-            || {
+            || -> Result<_> {
                 let (groups, n_corners) = corner_groups(&faces, &corner_uvs, &excluded, n_geometric);
+                cancel::check()?;
                 let around = groups
                     .iter()
                     .enumerate()
                     .flat_map(|(f, corners)| corners.iter().filter(|&&c| c != NO_CORNER).map(move |&c| (c, f as u32)));
                 let (start, faces_around) = compressed_rows(n_corners, around);
-                (groups, n_corners, start, faces_around)
+                Ok((groups, n_corners, start, faces_around))
             },
         );
+        let (classes, face_chart, n_charts, sides, walk_faces) = edges_and_charts?;
+        let (corner_groups, n_corners, corner_face_start, corner_faces) = corners?;
         cancel::check()?;
         let mirrored_uv_faces =
             corner_uvs.par_iter().zip(&excluded).filter(|(uv, &skip)| !skip && uv_signed_area2(uv) < 0.0).count();

@@ -14,6 +14,7 @@
 //! [`FaceMap::smooth_position`]: crate::frame::FaceMap::smooth_position
 //! [`FaceMap::normal`]: crate::frame::FaceMap::normal
 
+use crate::cancel;
 use crate::frame::{FaceMap, Frame};
 use crate::mesh::Topology;
 use glam::{DVec2, DVec3, Vec2, Vec3};
@@ -105,8 +106,11 @@ impl FacePatches {
         let origin = bounding_box_centre(&frame.positions);
         // Collected in parallel, not filled and then overwritten: a one-thread fill of the 26 MB
         // of a 200K-face mesh's patches took 6-10 ms of the atlas.
-        let faces =
-            (0..topology.faces.len()).into_par_iter().map(|face| patch(topology, frame, face, origin)).collect();
+        // A stop skips the remaining faces: the atlas checks for it before keeping them.
+        let faces = (0..topology.faces.len())
+            .into_par_iter()
+            .map(|face| if cancel::requested() { FacePatch::EMPTY } else { patch(topology, frame, face, origin) })
+            .collect();
         Self { origin, faces }
     }
 

@@ -82,8 +82,10 @@ pub fn unwrap(positions: &[[f64; 3]], faces: &[[i64; 3]], options: &UnwrapOption
         welded_faces.par_iter().map(|t| unit_face_normal(t.map(|v| positions[v as usize]))).collect()
     };
     let neighbours = face_neighbours(&welded_faces);
+    cancel::check()?;
     let own_normals = face_normals(&welded);
     let own_smoothed = smoothed_normals(&own_normals, &neighbours);
+    cancel::check()?;
     let (charted, normals, smoothed) = match charted_positions(&welded, &welded_faces, &own_normals, &own_smoothed) {
         Some(charted) => {
             let normals = face_normals(&charted);
