@@ -113,3 +113,22 @@ def test_the_bake_command_writes_files_other_tools_read(tmp_path):
     textured = trimesh.load(out / files["texture"], force="mesh")
     image = np.asarray(textured.visual.material.baseColorTexture)
     assert image.shape[:2] == (64, 64) and textured.visual.uv.shape == (len(textured.vertices), 2)
+
+
+def test_uvfeat_bake_takes_meshes_users_hold_and_writes_the_commands_files(tmp_path):
+    spot = uvfeat.examples.spot()
+    settings = dict(resolution=256, compute_resolution=64, samples=32)
+    assert main(["bake", uvfeat.examples.spot_path(), "--feature", "mean_curvature", "--radius", "4%",
+                 "--resolution", "256", "--compute-resolution", "64", "--samples", "32", "--out", str(tmp_path / "cli")]) == 0
+    held = trimesh.Trimesh(spot.positions, spot.faces, process=False)
+    for name, source in {"mesh": spot, "arrays": (spot.positions, spot.faces, spot.uvs, spot.uv_faces)}.items():
+        summary = uvfeat.bake(source, "mean_curvature", "4%", out=str(tmp_path / name), **settings)
+        tiff = summary["radii"]["4%"]["files"]["mean_curvature"]["tiff"]
+        np.testing.assert_array_equal(tifffile.imread(tmp_path / name / tiff), tifffile.imread(tmp_path / "cli" / tiff))
+    # Without UVs: an automatic atlas, as for a file without them; the values stay per vertex.
+    summary = uvfeat.bake(held, "mean_curvature", "4%", out=str(tmp_path / "no_uvs"), **settings)
+    assert summary["mesh"] and (tmp_path / "no_uvs" / "per_vertex_r4pct.ply").exists()
+    with pytest.raises(uvfeat.InvalidParameterError, match="unknown option"):
+        uvfeat.bake(spot, "mean_curvature", "4%", out=str(tmp_path / "x"), smaples=32)
+    with pytest.raises(uvfeat.InvalidMeshError, match="cannot take"):
+        uvfeat.bake("not a mesh", "mean_curvature", "4%", out=str(tmp_path / "y"))

@@ -25,6 +25,7 @@ from . import compare, errors, examples, options, reference, shapes, unwrap
 from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
+from .bake import bake
 from .batch import batch
 from .compute import compute
 from .converged import ConvergedReference, converged_reference
@@ -62,6 +63,7 @@ __all__ = [
     "GltfAnimation",
     "Neighbourhoods",
     "attach",
+    "bake",
     "compute",
     "ConvergedReference",
     "converged_reference",

@@ -2,7 +2,7 @@
 gutters fitted and dilated (16-bit PNG, float32 TIFF, and an 8-bit curvature map centred on 0.5 grey), GLB
 files coloured per vertex and by the texture, and a PLY whose ``quality`` property MeshLab reads
 (and Blender imports as an attribute). ``pip install 'uvfeat[bake]'`` brings SciPy (the
-dilation) and tifffile."""
+dilation) and tifffile. :func:`bake` writes them all for a mesh; ``uvfeat bake`` is its command."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ import os
 
 import numpy as np
 
+from ._core import __version__
 from .images import SIGNED_FEATURES, colour_range, colour_values
 from .mesh import Mesh
 
@@ -205,3 +206,73 @@ def bake_feature(out: str, stem: str, mesh: Mesh, name: str, texture: np.ndarray
     Image.fromarray(colour_texture).save(paths["colour_texture"])
     paths.update(write_glbs(out, stem, mesh, per_vertex, colour_texture, cmap, robust_low, robust_high))
     return paths
+
+
+def bake(mesh, features, radius, *, out: str = "uvfeat-out/bake", **options) -> dict:
+    """Bakes ``features`` at each radius into textures on the mesh's own UVs and writes them to
+    ``out``, as ``uvfeat bake`` does.
+
+    Parameters
+    ----------
+    mesh
+        A :class:`~uvfeat.Mesh` or any of :data:`uvfeat.interop.ACCEPTED`; without UVs (or with
+        overlapping ones) it gets an automatic atlas, as :func:`uvfeat.load` gives a file
+        (``uv`` option).
+    features, radius
+        As for ``uvfeat bake``: names (or "all"), one radius or several (a list or "1%,4%").
+    out : str
+        The folder of the files.
+    **options
+        ``samples``, ``resolution``, ``compute_resolution``, ``adaptive``, ``paper_mode``, ``seed``,
+        ``query``, ``method``, ``sampling``, ``quadrature``, ``surface``, ``standard_error``, ``uv``.
+
+    Returns
+    -------
+    dict
+        What ``bake.json`` holds: per radius the files of each feature by kind, the settings and
+        the notes.
+    """
+    from .feature_files import FeatureJob
+    from .interop import as_mesh
+    from .io import with_uv_policy
+    from .notes import recorded_notes
+
+    job = FeatureJob.of(features, radius, **options)
+    with recorded_notes() as notes:
+        mesh = with_uv_policy(as_mesh(mesh), job.uv, job.resolution)
+    return write_bakes(mesh, job, out, notes)
+
+
+def write_bakes(mesh: Mesh, job, out: str, load_notes: list[str], advance=lambda description, done=True: None) -> dict:
+    """The work of :func:`bake` and ``uvfeat bake`` on a mesh with UVs; ``advance`` reports each
+    step (``1 + 2 n_radii``)."""
+    from .atlas import Atlas
+    from .extras import require
+    from .feature_files import computed_radii, radius_tag
+    from .writers import write_json, write_per_vertex
+
+    require("scipy.ndimage", "dilating texture gutters")  # before minutes of computing, not after
+    require("tifffile", "writing float TIFF")
+    os.makedirs(out, exist_ok=True)
+    summary = {"uvfeat": __version__, "mesh": mesh.name, "warnings": list(load_notes), "radii": {},
+               "settings": {"features": list(job.features), "radii": list(job.radii), "samples": job.samples,
+                            "resolution": job.resolution, "compute_resolution": job.compute_resolution,
+                            "method": job.method, "seed": job.seed}}
+    advance("pre-processing + rasterising", done=False)
+    atlas = Atlas(mesh, resolution=job.resolution)
+    summary["warnings"] += atlas.warnings()
+    advance("buffers ready")
+    for computed in computed_radii(atlas, job, advance):
+        summary["warnings"] += computed.notes
+        advance(f"bakes at r = {computed.radius}", done=False)
+        tag = radius_tag(computed.radius)
+        files = {name: {kind: os.path.basename(path) for kind, path in
+                        bake_feature(out, f"{name}_r{tag}", atlas.mesh, name, m.texture,
+                                     computed.per_vertex[name], m.radius, m.corner_values()).items()}
+                 for name, m in computed.maps.items()}
+        first = next(iter(computed.maps.values()))
+        write_per_vertex(out, tag, atlas.mesh, first.radius, computed.per_vertex)
+        summary["radii"][computed.radius] = {"radius": first.radius, "files": files, "ply": f"per_vertex_r{tag}.ply"}
+        advance(f"bakes at r = {computed.radius} written")
+    write_json(os.path.join(out, "bake.json"), summary)
+    return summary

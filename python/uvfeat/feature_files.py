@@ -75,6 +75,15 @@ class FeatureJob:
             raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
 
     @classmethod
+    def of(cls, features, radius, pictures: bool = False, **options) -> FeatureJob:
+        """The job of a Python call's arguments: unknown option names are one clear error."""
+        valid = [f for f in cls.__dataclass_fields__ if f not in ("features", "radii", "pictures")]
+        unknown = sorted(set(options) - set(valid))
+        if unknown:
+            raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(valid)}")
+        return cls(features=features, radii=radius, pictures=pictures, **options)
+
+    @classmethod
     def from_args(cls, args, pictures: bool = True) -> FeatureJob:
         """The job of a command's parsed arguments (``--feature``, ``--radius``, ``--samples`` ...);
         the computation options a command does not offer (``--adaptive``, ``--paper-mode``,

@@ -5,17 +5,14 @@ run table rather than the end of the run."""
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import os
 
-from ..errors import InvalidParameterError
 from ..feature_files import FeatureJob
 from .cluster import check_workers, dask_client, distributed, run_tasks
 from .inputs import MemoryMesh, batch_inputs, output_folders
 from .table import write_run_table
 from .task import failed_row, finished_summary, label_of, mesh_task, source_of, summary_row
 
-JOB_OPTIONS = tuple(f.name for f in dataclasses.fields(FeatureJob) if f.name not in ("features", "radii", "pictures"))
 
 
 def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch", scheduler: str | None = None,
@@ -58,10 +55,7 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
         The run table, a row per mesh in input order: ``status`` is ``computed``, ``skipped``
         (finished by an earlier run) or ``failed`` (``error`` says why).
     """
-    unknown = sorted(set(options) - set(JOB_OPTIONS))
-    if unknown:
-        raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(JOB_OPTIONS)}")
-    job = FeatureJob(features=features, radii=radius, pictures=pictures, **options)
+    job = FeatureJob.of(features, radius, pictures=pictures, **options)
     if client is None and scheduler is None:
         check_workers(workers)
     items, out = batch_inputs(paths), os.path.abspath(out)  # workers may run in another folder
