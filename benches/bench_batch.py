@@ -21,7 +21,7 @@ import tempfile
 import time
 
 import uvfeat
-from uvfeat.feature_files import FeatureJob, load_with_notes, write_feature_files
+from uvfeat.files.feature_files import FeatureJob, load_with_notes, write_feature_files
 
 REPO = pathlib.Path(__file__).resolve().parents[1]
 SHARED = REPO.parent / "shared" / "meshes"
@@ -45,7 +45,7 @@ def peak_memory_mib(faces: int, resolution: int) -> tuple[float, float]:
     work (atlas, features, per-vertex values, files) on a torus of ``faces`` triangles at
     ``resolution``² buffers."""
     n = int((faces / 2) ** 0.5)
-    script = ("import resource, tempfile, uvfeat; from uvfeat.feature_files import FeatureJob, write_feature_files; "
+    script = ("import resource, tempfile, uvfeat; from uvfeat.files.feature_files import FeatureJob, write_feature_files; "
               "peak = lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024; print(peak()); "
               f"m = uvfeat.shapes.torus(2.0, 0.5, {2 * n}, {n // 2}); "
               f"job = FeatureJob(('mean_curvature',), ('2%',), samples=16, compute_resolution=128, "

@@ -4,7 +4,7 @@
 - painter, flat: matplotlib PolyCollection sorted far to near, one colour per face (uvfeat's
   former renderer);
 - painter, Gouraud: matplotlib's Gouraud-shaded triangles (tripcolor), sorted far to near;
-- z-buffer: uvfeat.render (the core's rasteriser; smooth shading, per-pixel values, 2x2 supersampling);
+- z-buffer: uvfeat.pictures.render (the core's rasteriser; smooth shading, per-pixel values, 2x2 supersampling);
 - polyscope, EGL: an offscreen OpenGL stack from PyPI (needs the system's EGL/Mesa; skipped when
   polyscope or EGL is missing).
 
@@ -26,7 +26,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import uvfeat  # noqa: E402
-from uvfeat.render import VIEW, draw_vertex_values, view_coordinates  # noqa: E402
+from uvfeat.pictures.render import VIEW, draw_vertex_values, view_coordinates  # noqa: E402
 
 
 def figure(pixels: int):
@@ -90,7 +90,7 @@ def main():
     values = (mesh.positions[:, 2] - mesh.positions[:, 2].min()) / np.ptp(mesh.positions[:, 2])
     candidates = {"painter, flat (matplotlib PolyCollection)": lambda *a: painter(*a, gouraud=False),
                   "painter, Gouraud (matplotlib tripcolor)": lambda *a: painter(*a, gouraud=True),
-                  "z-buffer (uvfeat.render)": zbuffer}
+                  "z-buffer (uvfeat.pictures.render)": zbuffer}
     shoot = polyscope_egl()
     if shoot is not None:
         candidates["polyscope, EGL (offscreen OpenGL)"] = shoot
@@ -106,7 +106,7 @@ def main():
                 draw(mesh, values, path, args.pixels)
                 times.append(time.perf_counter() - started)
             timings[name] = statistics.median(times)
-    base = timings["z-buffer (uvfeat.render)"]
+    base = timings["z-buffer (uvfeat.pictures.render)"]
     for name, seconds in timings.items():
         print(f"| {name} | {1e3 * seconds:,.0f} | {seconds / base:.2f} |")
 

@@ -11,7 +11,7 @@ import trimesh
 from PIL import Image
 
 import uvfeat
-from uvfeat.bake import dilate, fit_gutters, sample_bilinear
+from uvfeat.files.bake import dilate, fit_gutters, sample_bilinear
 from uvfeat.cli import main
 
 tifffile = pytest.importorskip("tifffile", reason="float TIFF needs the extra uvfeat[bake]")

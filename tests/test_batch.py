@@ -228,7 +228,7 @@ def test_meshes_in_memory_run_beside_files_and_resume_by_their_arrays(meshes, se
 def test_a_mesh_whose_workers_keep_dying_becomes_a_failed_row_with_the_cause(client, tmp_path):
     from uvfeat.batch.cluster import run_tasks
     from uvfeat.batch.run import _lost
-    from uvfeat.feature_files import FeatureJob
+    from uvfeat.files.feature_files import FeatureJob
 
     def dies_with_its_worker(*call):  # as a worker out of memory or killed from outside
         os._exit(9)

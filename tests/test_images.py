@@ -1,4 +1,4 @@
-"""Pictures of parametric-space buffers and feature maps (uvfeat.images): colour ranges, masks,
+"""Pictures of parametric-space buffers and feature maps (uvfeat.pictures.images): colour ranges, masks,
 orientation (v up) and the files written."""
 
 import matplotlib
@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 import uvfeat
-from uvfeat import images
+from uvfeat.pictures import images
 
 
 def rgba_of(colormap: str, t: float) -> np.ndarray:

@@ -12,7 +12,7 @@ import trimesh
 
 import uvfeat
 from conftest import usage_examples
-from uvfeat.bake import split_by_uv
+from uvfeat.files.bake import split_by_uv
 
 pyvista = pytest.importorskip("pyvista")
 

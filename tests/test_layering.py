@@ -105,3 +105,10 @@ def test_the_core_has_no_module_loops():
     assert "sampling/domain" in files["sampling/gather"]
     assert cycles(stages) == []
     assert cycles(files) == []
+
+
+def test_the_package_stays_a_page_of_modules_a_newcomer_can_scan():
+    # Pictures, written files, commands, animation and batch runs live in their own subpackages.
+    top_level = sorted(p.name for p in PACKAGE.glob("*.py"))
+    assert len(top_level) <= 20, top_level
+    assert {"pictures", "files", "cli", "animation", "batch"} <= {p.name for p in PACKAGE.iterdir() if p.is_dir()}

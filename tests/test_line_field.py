@@ -1,4 +1,4 @@
-"""Principal directions as a UV line field (uvfeat.line_field): the pull-back through each
+"""Principal directions as a UV line field (uvfeat.pictures.line_field): the pull-back through each
 texel's triangle, its sign, masking, and the segments drawn on a feature-map picture."""
 
 import matplotlib
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import uvfeat
-from uvfeat.line_field import draw_line_field, uv_line_field
+from uvfeat.pictures.line_field import draw_line_field, uv_line_field
 
 MAJOR, MINOR = 2.0, 0.5
 WIDTH = 64

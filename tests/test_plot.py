@@ -110,7 +110,7 @@ def test_pictures_leave_the_callers_matplotlib_backend_and_figures_alone(tmp_pat
     backend, before = matplotlib.get_backend(), plt.get_fignums()
     sphere = uvfeat.shapes.uv_sphere(1.0, 16, 8)
     uvfeat.plot(sphere, sphere.positions[:, 1], feature="k1", path=tmp_path / "plot.png")
-    from uvfeat.images import save_feature_figure
+    from uvfeat.pictures.images import save_feature_figure
 
     save_feature_figure(tmp_path / "map.png", "k1", np.zeros((8, 8)), 0.1)
     assert matplotlib.get_backend() == backend and plt.get_fignums() == before

@@ -1,4 +1,4 @@
-"""The matplotlib painter's renderer of per-vertex values (uvfeat.render)."""
+"""The matplotlib painter's renderer of per-vertex values (uvfeat.pictures.render)."""
 
 import matplotlib
 
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import uvfeat
-from uvfeat.render import UP_AXES, VIEW, draw_vertex_values, view_rotation
+from uvfeat.pictures.render import UP_AXES, VIEW, draw_vertex_values, view_rotation
 
 TOP = (90.0, -90.0)  # with up="z": camera on +z, screen x = object x, screen y = object y
 
@@ -163,7 +163,7 @@ def test_axes_limits_and_aspect():
 def test_a_closed_mesh_wound_inwards_shows_its_near_side():
     """Back faces of a closed mesh are culled by the winding: an inward-wound mesh (negative
     volume) must still show the side facing the viewer, not the far one."""
-    from uvfeat.render import render_values
+    from uvfeat.pictures.render import render_values
 
     torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
     height = torus.positions[:, 2]
@@ -174,7 +174,7 @@ def test_a_closed_mesh_wound_inwards_shows_its_near_side():
 
 
 def test_front_side_of_closed_open_and_inward_meshes():
-    from uvfeat.render import front_side
+    from uvfeat.pictures.render import front_side
 
     torus = uvfeat.shapes.torus(2.0, 0.5, 48, 24)
     assert front_side(torus.positions, torus.faces) == 1

@@ -157,7 +157,7 @@ def test_the_vertex_under_the_cursor_on_the_mesh_and_on_the_uv_map(sphere_viewer
 def test_the_panel_draws_a_frame(sphere_viewer):
     import polyscope as ps
 
-    from uvfeat.viewer_panel import Panel, radius_argument
+    from uvfeat.pictures.viewer_panel import Panel, radius_argument
 
     panel = Panel(sphere_viewer)
     ps.set_user_callback(panel.draw)

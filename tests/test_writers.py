@@ -1,4 +1,4 @@
-"""Files the command line writes (uvfeat.writers): per-vertex NPZ and PLY, and JSON summaries."""
+"""Files the command line writes (uvfeat.files.writers): per-vertex NPZ and PLY, and JSON summaries."""
 
 import json
 import math
@@ -8,8 +8,8 @@ import pytest
 import trimesh
 
 import uvfeat
-from uvfeat.images import vertex_colours
-from uvfeat.writers import direction_properties, write_json, write_per_vertex
+from uvfeat.pictures.images import vertex_colours
+from uvfeat.files.writers import direction_properties, write_json, write_per_vertex
 
 
 @pytest.fixture

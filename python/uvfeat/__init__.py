@@ -25,7 +25,7 @@ from . import compare, errors, examples, options, reference, shapes, unwrap
 from ._core import __version__
 from .animation import Animation, AnimationFrame, GltfAnimation, animate
 from .atlas import Atlas, Location, Neighbourhoods, SeamCrossing
-from .bake import bake
+from .files.bake import bake
 from .batch import batch
 from .compute import compute
 from .converged import ConvergedReference, converged_reference
@@ -46,8 +46,8 @@ from .errors import (
 )
 from .features import FeatureMap
 from .options import FEATURES
-from .surface_plot import plot
-from .viewer import view
+from .pictures.surface_plot import plot
+from .pictures.viewer import view
 from .interop import attach, to_pyvista
 from .io import SUPPORTED_FORMATS, load
 from .mesh import Mesh

@@ -145,8 +145,8 @@ def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike)
     """Per feature, ``compare_<feature>.png`` (parametric | reference | absolute difference, same
     view, shared colour range) and ``error_<feature>.png`` (the difference alone, larger).
     Returns the paths."""
-    from .images import FEATURE_UNITS, colour_range, offscreen_figure, save_figure
-    from .render import draw_vertex_values
+    from .pictures.images import FEATURE_UNITS, colour_range, offscreen_figure, save_figure
+    from .pictures.render import draw_vertex_values
 
     os.makedirs(out_dir, exist_ok=True)
     mesh = comparison.mesh

@@ -151,7 +151,7 @@ class FeatureMap:
         """The principal directions as a line field in the UV plane: ``(W_c, W_c, 2, 2)`` unit
         ``(du, dv)`` of ``[d1, d2]`` (v up, as ``texture``), NaN off the charts (a leading
         ``n_radii`` axis for a stack). For drawing them on the map. Needs ``method="fit"``."""
-        from .line_field import uv_line_field
+        from .pictures.line_field import uv_line_field
 
         if self.principal_directions is None:
             raise InvalidParameterError('principal directions need method="fit" in compute()')

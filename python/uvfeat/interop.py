@@ -2,7 +2,7 @@
 
 Every entry point that takes a mesh (:func:`uvfeat.compute`, :class:`uvfeat.Atlas`,
 :func:`uvfeat.reference.compute`, :func:`uvfeat.converged_reference`, :func:`uvfeat.compare.compare`,
-:func:`uvfeat.plot`, :func:`uvfeat.view`, :func:`uvfeat.bake.bake`, :func:`uvfeat.animate`) takes
+:func:`uvfeat.plot`, :func:`uvfeat.view`, :func:`uvfeat.bake`, :func:`uvfeat.animate`) takes
 any of :data:`ACCEPTED`. trimesh, PyVista and Open3D are recognised only when the caller has
 imported them already: none of them is a dependency of uvfeat for this.
 

@@ -60,8 +60,8 @@ def write_pictures(out: str, features: list[str], n_frames: int, fps: float, fac
     from PIL import Image
 
     from ..errors import MissingDependencyError
-    from ..images import colour_range, feature_picture, save_gif, save_mp4
-    from ..surface_plot import FixedCamera
+    from ..pictures.images import colour_range, feature_picture, save_gif, save_mp4
+    from ..pictures.surface_plot import FixedCamera
 
     ranges, notes, camera = {}, [], None
     for name in features:

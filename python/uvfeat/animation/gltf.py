@@ -25,7 +25,7 @@ PATH_WIDTHS = {"translation": 3, "rotation": 4, "scale": 3}
 
 def _transform(matrix: np.ndarray, points: np.ndarray) -> np.ndarray:
     # einsum, not BLAS products (here and for the morph targets): OpenBLAS's threads spin on the
-    # cores after a large product, slowing the frame's features that follow (uvfeat.render).
+    # cores after a large product, slowing the frame's features that follow (uvfeat.pictures.render).
     return np.einsum("ij,vj->vi", matrix[:3, :3], points) + matrix[:3, 3]
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import contextlib
 import os
 
-from ..feature_files import FeatureJob
+from ..files.feature_files import FeatureJob
 from .cluster import check_workers, dask_client, distributed, run_tasks
 from .inputs import MemoryMesh, batch_inputs, output_folders
 from .table import write_run_table

@@ -8,7 +8,7 @@ import json
 import os
 import time
 
-from ..feature_files import SUMMARY, FeatureJob, load_with_notes, radius_tag, write_feature_files
+from ..files.feature_files import SUMMARY, FeatureJob, load_with_notes, radius_tag, write_feature_files
 from ..notes import recorded_notes
 from .inputs import MemoryMesh
 

@@ -12,9 +12,9 @@ from .._core import __version__
 from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
 from ..options import ARGUMENT_DEFAULTS
-from ..surface_plot import VIEWS
+from ..pictures.surface_plot import VIEWS
 from ..unwrap import UV_POLICIES
-from ..writers import write_json
+from ..files.writers import write_json
 from .common import add_atlas_options, add_cluster_options, add_feature_options, console, print_dashboard, throughput
 
 

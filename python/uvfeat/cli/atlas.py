@@ -7,7 +7,7 @@ import time
 
 from .._core import __version__
 from ..options import CHOICES
-from ..writers import write_json
+from ..files.writers import write_json
 from .common import MESH_HELP, add_atlas_options, add_uv_options, on_file, steps
 
 
@@ -26,7 +26,7 @@ def add_command(commands) -> None:
 def write_atlas(mesh, args, console, load_notes: list[str], started: float) -> dict:
     """Builds the atlas and writes its pictures and ``summary.json`` to ``args.out``."""
     from ..atlas import Atlas
-    from ..images import save_atlas_pictures
+    from ..pictures.images import save_atlas_pictures
 
     os.makedirs(args.out, exist_ok=True)
     with steps(console, 3) as advance:

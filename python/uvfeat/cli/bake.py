@@ -3,8 +3,8 @@ tools open (MeshLab, Blender, glTF viewers, texture painters)."""
 
 from __future__ import annotations
 
-from ..bake import write_bakes
-from ..feature_files import FeatureJob
+from ..files.bake import write_bakes
+from ..files.feature_files import FeatureJob
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 

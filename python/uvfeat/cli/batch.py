@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import time
 
-from ..feature_files import FeatureJob
+from ..files.feature_files import FeatureJob
 from .common import (
     add_cluster_options,
     add_computation_options,

@@ -59,7 +59,7 @@ def throughput(out, description: str, total: int, unit: str, per_seconds: float 
 
 def load_mesh(path: str, args):
     """The mesh at ``path`` loaded with the command's UV options, and its warnings as notes."""
-    from ..feature_files import load_with_notes
+    from ..files.feature_files import load_with_notes
 
     return load_with_notes(path, args.uv, args.resolution, args.strict_uv)
 

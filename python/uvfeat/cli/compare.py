@@ -7,7 +7,7 @@ import json
 import os
 
 from ..notes import recorded_notes
-from ..writers import write_json
+from ..files.writers import write_json
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import contextlib
 import threading
 
-from ..feature_files import FeatureJob, write_feature_files
+from ..files.feature_files import FeatureJob, write_feature_files
 from .common import add_computation_options, add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 

@@ -23,8 +23,8 @@ def open_viewer(mesh, args, console, load_notes: list[str], started: float) -> N
 
     from ..atlas import Atlas
     from ..extras import require
-    from ..feature_files import FeatureJob
-    from ..viewer import HEADLESS, view
+    from ..files.feature_files import FeatureJob
+    from ..pictures.viewer import HEADLESS, view
 
     require("polyscope", "the viewer")  # before minutes of computing, not after
     job = FeatureJob.from_args(args, pictures=False)

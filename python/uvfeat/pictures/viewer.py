@@ -13,10 +13,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidParameterError, ViewerError
-from .interop import as_mesh
-from .mesh import Mesh
-from .options import DEFAULT_OPTIONS
+from ..errors import InvalidParameterError, ViewerError
+from ..interop import as_mesh
+from ..mesh import Mesh
+from ..options import DEFAULT_OPTIONS
 
 #: The options of ``Atlas.compute`` a FeatureMap's settings record: "compute another radius" uses
 #: them, so that the new radius is computed as the others were.
@@ -76,7 +76,7 @@ class Viewer:
 
     def __init__(self, mesh: Mesh, scales: list[Scale], *, atlas=None, compute_options: dict | None = None,
                  feature: str | None = None, backend: str = "auto"):
-        from .extras import require
+        from ..extras import require
 
         self.ps = require("polyscope", "the viewer")
         self.mesh, self.scales = mesh, scales
@@ -143,7 +143,7 @@ class Viewer:
 
     def add_radius(self, radius) -> None:
         """Computes every feature at one more ``radius`` (object units or ``"2%"``) and shows it."""
-        from .atlas import Atlas
+        from ..atlas import Atlas
         from .surface_plot import radius_label
 
         if self._atlas is None:
@@ -265,13 +265,13 @@ def view(mesh: Mesh, results: dict | None = None, *, feature: str | None = None,
     picks polyscope's (``"openGL3_egl"`` renders without a display); ``show=False`` returns the
     :class:`Viewer` without opening the window (for scripts and screenshots). Needs
     ``pip install 'uvfeat[view]'``."""
-    from .feature_files import radius_list
-    from .features import FeatureMap
-    from .options import feature_names
+    from ..files.feature_files import radius_list
+    from ..features import FeatureMap
+    from ..options import feature_names
 
     mesh = as_mesh(mesh)
     if results is None:
-        from .atlas import Atlas
+        from ..atlas import Atlas
 
         atlas = atlas or Atlas(mesh)
         names = feature_names(feature or "mean_curvature")

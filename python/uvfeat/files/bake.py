@@ -11,9 +11,9 @@ import os
 
 import numpy as np
 
-from ._core import __version__
-from .images import SIGNED_FEATURES, colour_range, colour_values
-from .mesh import Mesh
+from .._core import __version__
+from ..pictures.images import SIGNED_FEATURES, colour_range, colour_values
+from ..mesh import Mesh
 
 #: 16-bit PNG levels.
 LEVELS_16 = 65535
@@ -39,7 +39,7 @@ def dilate(texture: np.ndarray) -> np.ndarray:
     """The texture with every empty (NaN) texel filled: the first ring around the charts by the
     mean of its filled neighbours, the rest by the nearest filled texel, so bilinear and
     mip-mapped filtering near a chart's border never reach an empty texel (no dark seams)."""
-    from .extras import require
+    from ..extras import require
 
     ndimage = require("scipy.ndimage", "dilating texture gutters")
     if not np.isfinite(texture).any():
@@ -82,7 +82,7 @@ def fit_gutters(texture: np.ndarray, uvs: np.ndarray, values: np.ndarray, smooth
     The values are :meth:`FeatureMap.corner_values`: the chart-masked lookup renormalises over the
     filled texels of a footprint, which no single gutter value reproduces for every corner, so a
     plain dilation left seam vertices a few % of the range off (``tests/test_bake.py``)."""
-    from .extras import require
+    from ..extras import require
 
     sparse = require("scipy.sparse", "fitting texture gutters")
     linalg = require("scipy.sparse.linalg", "fitting texture gutters")
@@ -148,7 +148,7 @@ def write_curvature_png(path: str, texture: np.ndarray, bound: float, fields: di
 
 def write_float_tiff(path: str, texture: np.ndarray, fields: dict) -> None:
     """float32 TIFF (v up) with the metadata as JSON in the image description."""
-    from .extras import require
+    from ..extras import require
 
     tifffile = require("tifffile", "writing float TIFF")
     tifffile.imwrite(path, np.flipud(texture).astype(np.float32), description=json.dumps(fields))
@@ -233,9 +233,9 @@ def bake(mesh, features, radius, *, out: str = "uvfeat-out/bake", **options) -> 
         the notes.
     """
     from .feature_files import FeatureJob
-    from .interop import as_mesh
-    from .io import with_uv_policy
-    from .notes import recorded_notes
+    from ..interop import as_mesh
+    from ..io import with_uv_policy
+    from ..notes import recorded_notes
 
     job = FeatureJob.of(features, radius, **options)
     with recorded_notes() as notes:
@@ -246,8 +246,8 @@ def bake(mesh, features, radius, *, out: str = "uvfeat-out/bake", **options) -> 
 def write_bakes(mesh: Mesh, job, out: str, load_notes: list[str], advance=lambda description, done=True: None) -> dict:
     """The work of :func:`bake` and ``uvfeat bake`` on a mesh with UVs; ``advance`` reports each
     step (``1 + 2 n_radii``)."""
-    from .atlas import Atlas
-    from .extras import require
+    from ..atlas import Atlas
+    from ..extras import require
     from .feature_files import computed_radii, radius_tag
     from .writers import write_json, write_per_vertex
 

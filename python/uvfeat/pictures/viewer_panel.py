@@ -1,10 +1,10 @@
 """The viewer's control panel (ImGui, drawn by polyscope every frame): feature selector, radius
 slider, "compute another radius", colour range, and the value under the cursor. It only calls
-:class:`uvfeat.viewer.Viewer` methods, so what it does can be scripted and tested without it."""
+:class:`uvfeat.pictures.viewer.Viewer` methods, so what it does can be scripted and tested without it."""
 
 from __future__ import annotations
 
-from .errors import UvfeatError
+from ..errors import UvfeatError
 
 
 def radius_argument(text: str):

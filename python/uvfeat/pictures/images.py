@@ -16,7 +16,7 @@ def save_png(path: str | os.PathLike, rgba: np.ndarray) -> None:
     """Writes an (R, R, 3|4) float image in [0, 1] (buffer orientation) as PNG."""
     from PIL import Image
 
-    from .io import atomic_file
+    from ..io import atomic_file
 
     with atomic_file(path) as partial:
         Image.fromarray(_to_image(rgba)).save(partial)
@@ -117,7 +117,7 @@ def save_figure(fig, path: str | os.PathLike, **options) -> None:
     twice (0.06 s of a feature map's 0.26 s), for the same pixels."""
     import matplotlib
 
-    from .io import atomic_file
+    from ..io import atomic_file
 
     crop = fig.get_tightbbox(fig.canvas.get_renderer()).padded(matplotlib.rcParams["savefig.pad_inches"])
     with atomic_file(path) as partial:
@@ -219,7 +219,7 @@ def save_mp4(path: str | os.PathLike, pictures: list[np.ndarray], fps: float) ->
     """An H.264 MP4 of uint8 RGB pictures at ``fps`` frames per second, through the ffmpeg that
     the ``imageio-ffmpeg`` wheel ships (``pip install 'uvfeat[video]'``); pictures are padded
     white to even sizes, which the yuv420p pixel format players expect needs."""
-    from .extras import require
+    from ..extras import require
 
     imageio_ffmpeg = require("imageio_ffmpeg", "writing MP4")
     height, width = (n + n % 2 for n in pictures[0].shape[:2])

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _core
+from .. import _core
 
 #: Default view: elevation and azimuth in degrees (matplotlib's 3D convention), y up (the OBJ
 #: and glTF convention).

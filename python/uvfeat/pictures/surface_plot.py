@@ -8,8 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InvalidParameterError
-from .interop import as_mesh
+from ..errors import InvalidParameterError
+from ..interop import as_mesh
 
 #: Standard views as (elevation, azimuth) in degrees around the up axis; azimuth 0 looks at the
 #: front of a model facing +z with y up (the OBJ and glTF convention), 90 at its +x side.
@@ -47,7 +47,7 @@ def per_vertex_rows(mesh, values, radius=None, name: str = "values") -> tuple[np
     """Per-vertex values as ``(n_radii, n_vertices)`` rows and a label per radius (None when no
     radius is known), from a :class:`~uvfeat.FeatureMap` (its radii unless ``radius`` is given) or
     an array ``(n_vertices,)`` / ``(n_radii, n_vertices)``; ``radius`` holds numbers or labels."""
-    from .features import FeatureMap
+    from ..features import FeatureMap
 
     if isinstance(values, FeatureMap):
         if radius is None:
@@ -132,7 +132,7 @@ class FixedCamera:
     centre: np.ndarray
     bounds: tuple[np.ndarray, np.ndarray]
     pixels_per_unit: float
-    #: The animated mesh's :func:`~uvfeat.render.front_side`, worked out on the first frame.
+    #: The animated mesh's :func:`~uvfeat.pictures.render.front_side`, worked out on the first frame.
     front: int | None = None
 
     @classmethod

@@ -10,12 +10,12 @@ import os
 import time
 from dataclasses import asdict, dataclass, field
 
-from . import _core
-from ._core import __version__
-from .errors import InvalidParameterError
-from .io import atomic_file
-from .notes import recorded_notes
-from .options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
+from .. import _core
+from .._core import __version__
+from ..errors import InvalidParameterError
+from ..io import atomic_file
+from ..notes import recorded_notes
+from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -111,7 +111,7 @@ class FeatureJob:
 
 def load_with_notes(path: str, uv: str, resolution: int, strict_uv: bool):
     """The mesh at ``path`` loaded with these UV options, and its warnings as notes."""
-    from .io import load
+    from ..io import load
 
     with recorded_notes() as notes:
         mesh = load(path, uv=uv, resolution=resolution, normalize_uv=not strict_uv)
@@ -147,9 +147,9 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     the other files are complete. Returns the atlas and the summary."""
     import numpy as np
 
-    from .atlas import Atlas
-    from .images import save_feature_figure
-    from .surface_plot import save_plot
+    from ..atlas import Atlas
+    from ..pictures.images import save_feature_figure
+    from ..pictures.surface_plot import save_plot
 
     os.makedirs(out, exist_ok=True)
     for stale in glob.glob(os.path.join(glob.escape(out), "*.partial-*")):  # a killed run's unfinished files

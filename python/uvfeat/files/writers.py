@@ -1,6 +1,6 @@
 """Files the command line writes: per-vertex values as PLY (vertex properties and colours) and
 NPZ, and JSON summaries, each complete or absent (:func:`atomic_file`). Pictures are written by
-:mod:`uvfeat.images`."""
+:mod:`uvfeat.pictures.images`."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import os
 
 import numpy as np
 
-from .images import vertex_colours
-from .io import atomic_file
-from .mesh import Mesh
+from ..pictures.images import vertex_colours
+from ..io import atomic_file
+from ..mesh import Mesh
 
 
 def direction_properties(directions: np.ndarray | None) -> dict[str, np.ndarray]:

@@ -1,0 +1,3 @@
+"""Files uvfeat writes for other tools and for later runs: per-vertex PLY/NPZ and JSON
+(:mod:`.writers`), what ``uvfeat compute`` and ``uvfeat batch`` write for one mesh
+(:mod:`.feature_files`), and textures baked on the mesh's UVs (:mod:`.bake`: ``uvfeat.bake``)."""
