@@ -11,15 +11,22 @@ PEERS_BIN := $(PEERS_VENV)/bin
 PEERS_ARGS ?=
 EXPERIMENTS_ARGS ?=
 
-.PHONY: demo test test-rs test-py install bench bench-noise bench-peers experiments clean
+.PHONY: demo test test-rs test-py install install-test bench bench-noise bench-peers experiments clean
+
+# The package's own dependencies come from pyproject.toml: `install` brings what uvfeat needs to
+# run, `install-test` adds the extras the tests exercise (test, batch, video, view, bake).
+TEST_EXTRAS := test,batch,video,view,bake
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 
 install: $(BIN)/python
-	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q "maturin>=1.9.4,<2" numpy trimesh charset-normalizer xatlas matplotlib pillow rich pygltflib pytest hypothesis atheris pygeodesic mypy "dask[distributed,diagnostics]" pyarrow imageio-ffmpeg polyscope scipy tifffile pyvista
-	$(BIN)/maturin develop --release -q
+	$(BIN)/python -m pip install -q --upgrade pip "maturin>=1.9.4,<2"
+	VIRTUAL_ENV=$(abspath $(VENV)) $(BIN)/maturin develop --release -q
+
+install-test: $(BIN)/python
+	$(BIN)/python -m pip install -q --upgrade pip "maturin>=1.9.4,<2"
+	VIRTUAL_ENV=$(abspath $(VENV)) $(BIN)/maturin develop --release -q --extras $(TEST_EXTRAS)
 
 demo: install
 	$(BIN)/uvfeat demo --out $(DEMO_OUT)
@@ -29,12 +36,12 @@ test-rs:
 	cargo clippy --workspace --all-targets -q -- -D warnings
 	cargo test --workspace --exclude uvfeat-python
 
-test-py: install
+test-py: install-test
 	$(BIN)/python -m pytest -q tests
 
 test: test-rs test-py
 
-bench: install
+bench: install-test
 	$(BIN)/python benches/bench_atlas.py
 	$(BIN)/python benches/bench_features.py
 	$(BIN)/python benches/bench_animate.py
@@ -42,18 +49,18 @@ bench: install
 
 # Noise study of the integral and fit estimators (docs/NOISE.md); NOISE_ARGS=--quick for a subset.
 NOISE_ARGS ?= --compute-resolution 256
-bench-noise: install
+bench-noise: install-test
 	$(BIN)/python benches/bench_noise.py $(NOISE_ARGS)
 
 # The paper's evaluation (DESIGN.md §5.2-§5.8) in one run, ~25-40 min on 2 cores: docs/EXPERIMENTS.md,
 # docs/experiments/results.json and plots. EXPERIMENTS_ARGS=--quick for a smoke run (written to
 # uvfeat-out/experiments-quick/), --only table1,radius, --resume, --report-only.
-experiments: install
+experiments: install-test
 	$(BIN)/python benches/experiments.py $(EXPERIMENTS_ARGS)
 
 # Peers benchmark (docs/PEERS.md): libigl, trimesh, pymeshlab, trueform in their own venv, next to
 # a uvfeat wheel built from this tree. PEERS_ARGS=--quick for the 50K-face subset.
-bench-peers: install
+bench-peers: install-test
 	test -x $(PEERS_BIN)/python || $(PYTHON) -m venv $(PEERS_VENV)
 	$(PEERS_BIN)/python -m pip install -q --upgrade pip
 	$(PEERS_BIN)/python -m pip install -q -r benches/peers/requirements.txt
