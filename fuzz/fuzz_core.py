@@ -10,12 +10,15 @@ A finding is an exception other than :class:`uvfeat.UvfeatError`, a crash or a h
 
 from __future__ import annotations
 
+import contextlib
+import os
 import sys
 
 import atheris
 import numpy as np
 
-with atheris.instrument_imports():
+# Replaying inputs (UVFEAT_FUZZ_REPLAY=1) needs no coverage feedback, and instrumenting takes seconds.
+with contextlib.nullcontext() if os.environ.get("UVFEAT_FUZZ_REPLAY") == "1" else atheris.instrument_imports():
     import uvfeat
     from harness import EXPECTED, numbers, quiet
     from uvfeat import _core

@@ -8,6 +8,7 @@ A finding is an exception other than :class:`uvfeat.UvfeatError`, a crash or a h
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 import tempfile
@@ -15,8 +16,10 @@ import tempfile
 import atheris
 
 # trimesh's file parsers are what the inputs reach: instrumented for coverage (the whole of trimesh
-# would take a minute to instrument at every start).
-with atheris.instrument_imports(include=["uvfeat", "trimesh.exchange", "harness"]):
+# would take a minute to instrument at every start). Replaying inputs (UVFEAT_FUZZ_REPLAY=1) needs
+# no coverage feedback, so no instrumentation (seconds at every start).
+REPLAY = os.environ.get("UVFEAT_FUZZ_REPLAY") == "1"
+with contextlib.nullcontext() if REPLAY else atheris.instrument_imports(include=["uvfeat", "trimesh.exchange", "harness"]):
     import trimesh  # noqa: F401
     import uvfeat
     from harness import EXPECTED, quiet
