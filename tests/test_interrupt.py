@@ -113,11 +113,19 @@ SET_UP = textwrap.dedent("""
 """)
 
 
+def as_from_a_terminal() -> None:
+    """A child started from a shell's background job inherits SIGINT ignored, and Python then
+    leaves it so; a program run from a terminal has it at its default, which Python turns into
+    KeyboardInterrupt."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def interrupt_each(child: str | list[str], into: float) -> dict[str, float]:
     """Runs ``child`` (code, or a script and its arguments), sends SIGINT ``into`` seconds after
     each "started" line, and returns the seconds from each signal to the child's KeyboardInterrupt."""
     arguments = ["-c", child] if isinstance(child, str) else child
     child = subprocess.Popen([sys.executable, *arguments], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             preexec_fn=as_from_a_terminal,
                              text=True)
     latencies, name, usable = {}, None, False
     # A call that ignores the signal would run for minutes: stop the child, and say which.
@@ -168,7 +176,7 @@ def test_the_command_line_exits_with_130_and_one_line(tmp_path):
     trimesh.Trimesh(mesh.positions, mesh.faces, process=False).export(path)
     child = subprocess.Popen([sys.executable, "-m", "uvfeat", "compute", str(path), "--radius", "4%,8%,16%,24%,32%",
                               "--feature", "all", "--compute-resolution", "1024", "--out", str(tmp_path / "out")],
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=as_from_a_terminal, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              env=dict(os.environ, UVFEAT_CACHE_DIR=str(tmp_path / "cache")))
     time.sleep(6.0)                                 # past the imports, the load and the atlas
     assert child.poll() is None, child.communicate()
