@@ -4,7 +4,7 @@ time of each method, from a loaded mesh with a cached automatic atlas.
     .venv/bin/python benches/bench_scan_vertices.py [--meshes armadillo.obj dragon.obj stanford-bunny.obj
         spot_triangulated.obj bob_tri.obj]
         [--radii 1 2 4 8] [--methods default vertices reference] [--probe 1000] [--repeats 3]
-        [--resolution 512]
+        [--resolution 512] [--truth facets|smooth]
 
 Methods: `default` is `uvfeat.compute` with its defaults; `vertices` is `uvfeat.compute` with
 `quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
@@ -12,8 +12,9 @@ maps; `vertices/smooth` on the smooth surface, `vertices@1024` with 1024² buffe
 `--resolution`); `reference` is `uvfeat.reference.compute`. Each
 call is timed end to end (atlas buffers, features, per-vertex values); the methods of a cell alternate
 `--repeats` times and the table keeps the median. The truth is `uvfeat.converged_reference`
-at `--probe` random vertices (two levels at most), cached under uvfeat-out/bench-cache. Errors
-are %AE: mean |value - truth| over the truth's Q1-Q99 range, in percent.
+at `--probe` random vertices (three levels at most) of the surface `--truth` names (the flat faces,
+or the smooth surface through the vertices), cached under uvfeat-out/bench-cache. Errors are %AE:
+mean |value - truth| over the truth's Q1-Q99 range, in percent.
 """
 
 from __future__ import annotations
@@ -37,11 +38,13 @@ def percent_error(values: np.ndarray, truth: np.ndarray) -> float:
     return float(100 * np.nanmean(np.abs(values - truth)) / spread)
 
 
-def truth(mesh: uvfeat.Mesh, name: str, radius: str, probe: np.ndarray) -> tuple[dict[str, np.ndarray], str]:
+def truth(mesh: uvfeat.Mesh, name: str, radius: str, probe: np.ndarray,
+          surface: str) -> tuple[dict[str, np.ndarray], str]:
     """The converged values at `probe` and a note of their level and last change (%)."""
-    path = CACHE / f"{name}-{radius.rstrip('%')}pc-{len(probe)}-converged.npz"
+    kind = "converged" if surface == "facets" else f"converged-{surface}"
+    path = CACHE / f"{name}-{radius.rstrip('%')}pc-{len(probe)}-{kind}.npz"
     if not path.exists():
-        result = uvfeat.converged_reference(mesh, FEATURES, radius, vertices=probe, max_levels=3)
+        result = uvfeat.converged_reference(mesh, FEATURES, radius, vertices=probe, max_levels=3, surface=surface)
         change = max(result.changes[-1].values()) if result.changes else float("nan")
         CACHE.mkdir(parents=True, exist_ok=True)
         np.savez(path, level=result.level, change=change, **result.values)
@@ -70,10 +73,13 @@ def main() -> None:
     parser.add_argument("--probe", type=int, default=1000)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--resolution", type=int, default=512, help="atlas resolution of the 'vertices' methods")
+    parser.add_argument("--truth", choices=["facets", "smooth"], default="facets",
+                        help="the surface of the converged reference")
     args = parser.parse_args()
     warnings.simplefilter("ignore")
     folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", "../shared/meshes"))
-    print(f"{os.cpu_count()} cores; median of {args.repeats} alternating calls; %AE against the converged reference")
+    print(f"{os.cpu_count()} cores; median of {args.repeats} alternating calls; %AE against the converged reference "
+          f"of the {args.truth} surface")
     print("| mesh (faces, charts) | r | truth level (last change %) | "
           + " | ".join(f"{m}: H / K %AE, s" for m in args.methods) + " |")
     print("|---|---|---|" + "---|" * len(args.methods))
@@ -85,7 +91,7 @@ def main() -> None:
                                                         replace=False))
         for r in args.radii:
             radius = f"{r:g}%"
-            expected, level = truth(mesh, pathlib.Path(file).stem, radius, probe)
+            expected, level = truth(mesh, pathlib.Path(file).stem, radius, probe, args.truth)
             runs = {m: [] for m in args.methods}
             values = {}
             for _ in range(args.repeats):

@@ -1,12 +1,17 @@
 """A converged object-space reference: the reference of :mod:`uvfeat.reference` evaluated on a
 refined copy of the same surface, at the original vertices.
 
-Midpoint subdivision keeps the piecewise-flat surface and its original vertices (first, in their
-order), so the reference of the subdivided mesh measures the same surface with neighbourhoods
-that no longer grow in whole coarse vertex rings: its error of order ``h / r`` shrinks with each
-level. Levels are added until two successive ones agree within ``tolerance`` (range-normalised
-mean change), and the history of changes is returned as the evidence of convergence. Use it
-where "the reference" stands for the truth (comparisons, experiments, peers).
+Midpoint subdivision keeps the original vertices (first, in their order) and, with
+``surface="facets"``, the piecewise-flat surface, so the reference of the subdivided mesh measures
+the same surface with neighbourhoods that no longer grow in whole coarse vertex rings: its error of
+order ``h / r`` shrinks with each level. With ``surface="smooth"`` every new vertex is lifted onto
+the smooth surface uvfeat's ``surface="smooth"`` integrates (DESIGN.md §1.3): on each face the
+Phong surface through its vertices with their area-weighted normals, ``p + 1/2 sum b_i ((x_i - p)
+. n_i) n_i``, so the limit is that surface rather than the chords between the vertices. The two
+differ by the facets' sagitta, about ``h^2 k / 8``, which is a large part of ``H r^2 / 4`` where
+``r`` spans a few edges. Levels are added until two successive ones agree within ``tolerance``
+(range-normalised mean change), and the history of changes is returned as the evidence of
+convergence. Use it where "the reference" stands for the truth (comparisons, experiments, peers).
 """
 
 from __future__ import annotations
@@ -54,6 +59,36 @@ def _welded(mesh: Mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return positions, inverse[mesh.faces], inverse
 
 
+SURFACES = ("facets", "smooth")
+
+
+def _lifted_onto_smooth_surface(positions: np.ndarray, faces: np.ndarray, flat: np.ndarray,
+                                refined_faces: np.ndarray, level: int) -> np.ndarray:
+    """The vertices of ``level`` midpoint subdivisions (``flat``, ``refined_faces``) of
+    (``positions``, ``faces``) moved onto the coarse mesh's smooth (Phong, 1/2) surface. Midpoint
+    subdivision gives each face four consecutive children, so a refined face's coarse face is its
+    index over ``4 ** level``; a vertex on a coarse edge gets the same point from either face."""
+    sums = np.zeros_like(positions)
+    normals = np.cross(positions[faces[:, 1]] - positions[faces[:, 0]], positions[faces[:, 2]] - positions[faces[:, 0]])
+    for corner in range(3):
+        np.add.at(sums, faces[:, corner], normals)
+    normals = sums / np.maximum(np.linalg.norm(sums, axis=1, keepdims=True), np.finfo(float).tiny)
+    owner = np.empty(len(flat), dtype=np.int64)
+    owner[refined_faces.reshape(-1)] = np.repeat(np.arange(len(refined_faces)) // 4 ** level, 3)
+    corners = faces[owner]
+    x = positions[corners]                                        # (n, 3, 3)
+    e1, e2, d = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0], flat - x[:, 0]
+    g11, g12, g22 = (e1 * e1).sum(1), (e1 * e2).sum(1), (e2 * e2).sum(1)
+    r1, r2 = (e1 * d).sum(1), (e2 * d).sum(1)
+    det = g11 * g22 - g12 * g12
+    with np.errstate(invalid="ignore", divide="ignore"):
+        b1, b2 = (g22 * r1 - g12 * r2) / det, (g11 * r2 - g12 * r1) / det
+    weights = np.nan_to_num(np.stack([1 - b1 - b2, b1, b2], axis=1))  # a degenerate face stays flat
+    n = normals[corners]
+    heights = ((x - flat[:, None]) * n).sum(2)
+    return flat + 0.5 * (weights[..., None] * heights[..., None] * n).sum(1)
+
+
 def _change(finer: np.ndarray, coarser: np.ndarray) -> float:
     known = np.isfinite(finer) & np.isfinite(coarser)
     if not known.any():
@@ -65,7 +100,7 @@ def _change(finer: np.ndarray, coarser: np.ndarray) -> float:
 
 def converged_reference(mesh: Mesh, features, radius, *, vertices=None, tolerance: float = 0.5, max_levels: int = 3,
                         min_levels: int = 1, progress=None, coarse: dict[str, np.ndarray] | None = None,
-                        **options) -> ConvergedReference:
+                        surface: str = "facets", **options) -> ConvergedReference:
     """The object-space reference of ``mesh``'s surface, refined until it converges.
 
     Parameters
@@ -88,12 +123,17 @@ def converged_reference(mesh: Mesh, features, radius, *, vertices=None, toleranc
     coarse : dict, optional
         The reference's values on ``mesh`` itself at every row (level 0), when the caller has
         them already: level 0 is then not computed again (its time is recorded as 0).
+    surface : {"facets", "smooth"}
+        The surface refined: the flat faces, or the smooth surface through the vertices that
+        ``surface="smooth"`` of the parametric computation integrates (see the module's notes).
     """
     mesh = as_mesh(mesh)
     if not (isinstance(max_levels, int) and isinstance(min_levels, int) and 0 <= min_levels <= max_levels <= 5):
         raise InvalidParameterError(f"need 0 <= min_levels <= max_levels <= 5, got {min_levels}, {max_levels}")
     if not (np.isfinite(tolerance) and tolerance > 0):
         raise InvalidParameterError(f"tolerance must be a positive percentage, got {tolerance!r}")
+    if surface not in SURFACES:
+        raise InvalidParameterError(f"surface must be one of {SURFACES}, got {surface!r}")
     import trimesh
 
     names = feature_names(features)
@@ -101,13 +141,16 @@ def converged_reference(mesh: Mesh, features, radius, *, vertices=None, toleranc
     rows = np.arange(mesh.n_vertices) if vertices is None else np.asarray(vertices, dtype=np.int64)
     if rows.ndim != 1 or (rows.size and (rows.min() < 0 or rows.max() >= mesh.n_vertices)):
         raise InvalidParameterError(f"vertices must be indices of the mesh's {mesh.n_vertices} vertices")
-    positions, faces, welded = _welded(mesh)
+    coarse_positions, coarse_faces, welded = _welded(mesh)
+    positions, faces, flat = coarse_positions, coarse_faces, coarse_positions
     result = ConvergedReference(values={}, level=0)
     previous = None
     for level in range(max_levels + 1):
         started = time.perf_counter()
         if level:
-            positions, faces = trimesh.remesh.subdivide(positions, faces)
+            flat, faces = trimesh.remesh.subdivide(flat, faces)
+            positions = flat if surface == "facets" else _lifted_onto_smooth_surface(
+                coarse_positions, coarse_faces, flat, faces, level)
         if progress is not None:
             progress(level, len(faces))
         if level == 0 and coarse is not None:
