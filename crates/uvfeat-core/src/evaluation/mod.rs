@@ -2,9 +2,11 @@
 //! adaptive, DESIGN.md §1.8; one pass of statistics; every estimator; optional batch-means standard
 //! errors), and on a tile of texels at once with the shared lattice ([`evaluate_tile`]).
 
+mod integration;
 mod tile;
 
-pub use tile::{evaluate_tile, shared_lattice_applies, texel_uv};
+pub use integration::{integration, Integration};
+pub use tile::{evaluate_tile, texel_uv};
 
 use crate::atlas::Atlas;
 use crate::features::{
@@ -13,8 +15,8 @@ use crate::features::{
 };
 use crate::lookup::Lookup;
 use crate::sampling::{
-    centre_at, disk_pattern, gather, gather_covering, gather_surfels, surfel_centre, Centre, Placement, Quadrature,
-    Sample, SampleCounts, TURNS,
+    centre_at, disk_pattern, gather, gather_covering, gather_surfels, surfel_centre, Centre, Placement, Sample,
+    SampleCounts, TURNS,
 };
 use crate::settings::ComputeSettings;
 use glam::DVec2;
@@ -49,7 +51,7 @@ pub fn prepare(atlas: &Atlas, settings: &ComputeSettings) {
     if settings.lookup == Lookup::Bilinear {
         atlas.buffers();
     }
-    if settings.quadrature == Quadrature::Surfels {
+    if integration(atlas, settings).uses_surfels() {
         atlas.surfels(settings.surface);
     }
 }
@@ -125,9 +127,10 @@ pub fn evaluate_point(
         return PixelResult::EMPTY;
     };
     let sampler = settings.sampler();
-    if settings.quadrature == Quadrature::Surfels {
+    let integration = integration(atlas, settings);
+    if integration.uses_surfels() {
         let Some(centre) = surfel_centre(atlas, &centre, settings.surface) else { return PixelResult::EMPTY };
-        if settings.method == CurvatureMethod::Integral {
+        if integration == Integration::SurfelSums {
             // The integral estimators read sums, which the surfels' moments give (exactly for H).
             let at = SurfelCentre::new(
                 centre.position,

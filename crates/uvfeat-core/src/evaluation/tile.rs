@@ -11,31 +11,14 @@
 use super::{evaluate_point, Patterns, PixelResult};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
-use crate::features::{lattice_statistics, CurvatureMethod, LatticeNeighbourhood, SumsKernel, VolumeWeighting};
+use crate::features::{lattice_statistics, LatticeNeighbourhood, SumsKernel};
 use crate::relocation::{walk, walk_across, Home, Located, Seams};
 use crate::sampling::{
-    fast_path_applies, grow_marked, probed_reach, secant_distortion, texel_point, Centre, LatticeDomain, LatticeTexel,
-    Overlaps, Placement, Quadrature, Reach, Sample, SamplingPath, TexelPoint, TileLattice, TilePlane, DIRECTIONS,
-    EDGE_RADIUS,
+    grow_marked, probed_reach, secant_distortion, texel_point, Centre, LatticeDomain, LatticeTexel, Placement, Reach,
+    Sample, TexelPoint, TileLattice, TilePlane, DIRECTIONS, EDGE_RADIUS,
 };
 use crate::settings::ComputeSettings;
 use glam::{DVec2, Vec2};
-
-/// `true` when the shared lattice serves `settings` on `atlas`: the fast path's choices, with the
-/// integral estimators over the whole pattern at once (no adaptive stages, no batch errors, no
-/// fit), the distance weighting, no geodesic distances, and overlaps kept.
-pub fn shared_lattice_applies(atlas: &Atlas, settings: &ComputeSettings) -> bool {
-    let sampler = settings.sampler();
-    settings.sampling == SamplingPath::Shared
-        && fast_path_applies(atlas, &sampler)
-        && !settings.adaptive
-        && !settings.standard_errors
-        && settings.method == CurvatureMethod::Integral
-        && settings.volume_weighting == VolumeWeighting::Distance
-        && settings.overlaps == Overlaps::Keep
-        && settings.quadrature == Quadrature::Pattern
-        && !sampler.with_geodesic
-}
 
 /// The parametric location of texel `t` of a `w`² texture.
 pub fn texel_uv(t: usize, w: usize) -> DVec2 {

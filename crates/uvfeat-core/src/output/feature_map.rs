@@ -6,7 +6,7 @@ use crate::atlas::Atlas;
 use crate::cancel;
 use crate::error::Result;
 use crate::evaluation::{
-    evaluate_point, evaluate_tile, prepare, shared_lattice_applies, texel_uv, Patterns, PixelResult,
+    evaluate_point, evaluate_tile, integration, prepare, texel_uv, Integration, Patterns, PixelResult,
 };
 use crate::features::{CurvatureMethod, Feature};
 use crate::sampling::Placement;
@@ -137,7 +137,7 @@ impl FeatureMaps {
         let w = settings.resolution;
         let patterns = Patterns::new(settings);
         prepare(atlas, settings);
-        let shared = shared_lattice_applies(atlas, settings);
+        let shared = integration(atlas, settings) == Integration::SharedLattice;
         let ball = ball_texels(atlas, settings);
         let tiles = tiles(w, tile_side(ball, shared));
         // Kept tile by tile: flattening them into one vector copied 31 MB (a fifth of a 200K-face

@@ -2,10 +2,9 @@
 //! operators `F(p, S(p))` (DESIGN.md §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
 use crate::atlas::Atlas;
-use crate::evaluation::prepare;
+use crate::evaluation::{integration, prepare};
 use crate::sampling::{
-    centre_at, disk_pattern, gather_covering, gather_surfels, surfel_centre, Placement, Quadrature, Sample,
-    SamplerSettings,
+    centre_at, disk_pattern, gather_covering, gather_surfels, surfel_centre, Placement, Sample, SamplerSettings,
 };
 use crate::settings::ComputeSettings;
 use glam::DVec2;
@@ -53,7 +52,7 @@ pub fn neighbourhood_tile(
             let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
             let mut centre = centre_at(atlas, uv, settings.lookup)?;
             let mut samples = Vec::with_capacity(n);
-            if settings.quadrature == Quadrature::Surfels {
+            if integration(atlas, settings).uses_surfels() {
                 centre = surfel_centre(atlas, &centre, settings.surface)?;
                 gather_surfels(atlas, &centre, &sampler, &mut samples);
             } else {

@@ -97,7 +97,7 @@ impl CornerMeans {
 /// (vertices the file split at seams get the value of their welded vertex). The direct query of
 /// the surfels' integral estimators sums their moments at the vertices ([`vertex_values`]).
 pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
-    if query == VertexQuery::Direct && sums_apply(settings) {
+    if query == VertexQuery::Direct && sums_apply(atlas, settings) {
         if let Ok(at_vertices) = vertex_values(atlas, settings) {
             return at_vertices.values;
         }

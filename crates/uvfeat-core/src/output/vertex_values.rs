@@ -6,9 +6,9 @@ use super::corners::VertexCorners;
 use crate::atlas::Atlas;
 use crate::cancel;
 use crate::error::{Result, UvfeatError};
-use crate::evaluation::PixelResult;
-use crate::features::{surfel_sums, CurvatureMethod, SurfelCentre};
-use crate::sampling::{Quadrature, SampleCounts};
+use crate::evaluation::{integration, Integration, PixelResult};
+use crate::features::{surfel_sums, SurfelCentre};
+use crate::sampling::SampleCounts;
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
 
@@ -22,10 +22,10 @@ pub struct VertexValues {
     pub counts: Vec<SampleCounts>,
 }
 
-/// Whether `settings` can be evaluated from the surfels' moments: the surfel quadrature's integral
-/// estimators (the quadric fit needs every sample, not sums).
-pub fn sums_apply(settings: &ComputeSettings) -> bool {
-    settings.quadrature == Quadrature::Surfels && settings.method == CurvatureMethod::Integral
+/// Whether `settings` can be evaluated from the surfels' moments on `atlas`: the surfel
+/// quadrature's integral estimators (the quadric fit needs every sample, not sums).
+pub fn sums_apply(atlas: &Atlas, settings: &ComputeSettings) -> bool {
+    integration(atlas, settings) == Integration::SurfelSums
 }
 
 /// Every feature of `settings` at every *input* vertex (one `Vec` per feature, in the order of
@@ -70,7 +70,7 @@ pub fn vertex_values_at_radii(atlas: &Atlas, settings: &ComputeSettings, radii: 
 /// Values at the welded vertices, each with radius `radii[vertex]` where given.
 fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -> Result<VertexValues> {
     settings.validate()?;
-    if !sums_apply(settings) {
+    if !sums_apply(atlas, settings) {
         return Err(UvfeatError::InvalidParameter {
             name: "quadrature",
             reason: "values at the vertices sum the surfels' moments: quadrature=\"surfels\" with method=\"integral\""
