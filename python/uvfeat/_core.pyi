@@ -20,6 +20,8 @@ __all__ = [
     "ComputeSettings",
     "FeatureMaps",
     "compute_settings",
+    "sampling_settings",
+    "check_options",
     "feature_names",
     "default_options",
     "paper_options",
@@ -181,6 +183,10 @@ class FeatureMaps:
     ) -> tuple[NDArray[np.float64], NDArray[np.int64], list[NDArray[np.float32]]]: ...
 
 def compute_settings(features: list[str], radius: float, options: dict[str, Any]) -> ComputeSettings: ...
+def sampling_settings(radius: float, options: dict[str, Any]) -> ComputeSettings: ...
+def check_options(options: dict[str, Any]) -> None:
+    """Validates options on their own, before there is a mesh or a radius."""
+
 def feature_names() -> list[str]:
     """Every feature name, in output order."""
 

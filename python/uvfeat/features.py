@@ -160,20 +160,23 @@ class FeatureMap:
         return fields[0] if not self.is_stack else np.stack(fields)
 
 
-def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
+def _core_options(samples, resolution, adaptive, seed, opts) -> dict:
     # The core checks every option's kind and range; NumPy scalars become Python numbers first.
     given = dict(opts, samples=samples, compute_resolution=resolution, adaptive=adaptive, seed=seed)
-    core_options = {name: value.item() if isinstance(value, np.generic) else value for name, value in given.items()
-                    if name not in PER_VERTEX_OPTIONS}
-    return _core.compute_settings(names, radius, core_options)
+    return {name: value.item() if isinstance(value, np.generic) else value for name, value in given.items()
+            if name not in PER_VERTEX_OPTIONS}
+
+
+def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
+    return _core.compute_settings(names, radius, _core_options(samples, resolution, adaptive, seed, opts))
 
 
 def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, options):
-    """Core settings for neighbourhood tiles (no estimator is run, so any feature name will do)."""
+    """Core settings for neighbourhood tiles: sampling alone, no estimator runs on them."""
     opts = resolve_options(options, paper_mode=False)
     r = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
     resolution = check_resolution(compute_resolution, "compute_resolution")
-    return _core_settings(["mean_curvature"], r, samples, resolution, False, seed, opts), resolution
+    return _core.sampling_settings(r, _core_options(samples, resolution, False, seed, opts)), resolution
 
 
 def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,

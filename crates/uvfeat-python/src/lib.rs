@@ -32,6 +32,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<settings::PySettings>()?;
     m.add_class::<output::PyFeatureMaps>()?;
     m.add_function(wrap_pyfunction!(settings::compute_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::sampling_settings, m)?)?;
+    m.add_function(wrap_pyfunction!(settings::check_options, m)?)?;
     m.add_function(wrap_pyfunction!(output::vertex_feature_values, m)?)?;
     m.add_function(wrap_pyfunction!(output::compute_maps, m)?)?;
     m.add_function(wrap_pyfunction!(output::neighbourhood_tile_arrays, m)?)?;

@@ -90,13 +90,33 @@ pub fn feature_names() -> Vec<&'static str> {
 #[pyfunction]
 #[pyo3(signature = (features, radius, options))]
 pub fn compute_settings(features: Vec<String>, radius: f64, options: &Bound<'_, PyDict>) -> PyResult<PySettings> {
-    let mut s = ComputeSettings::new(feature_list(&features)?, radius);
-    for (key, value) in options.iter() {
-        let name: String = key.extract()?;
-        s.set_option(&name, &given(&name, &value)?).map_err(to_py)?;
-    }
+    let s = with_options(ComputeSettings::new(feature_list(&features)?, radius), options)?;
     s.validate().map_err(to_py)?;
     Ok(PySettings { inner: s })
+}
+
+/// Builds and validates the settings of neighbourhood sampling alone (no features: a
+/// user-defined operator reads the samples), as [`compute_settings`] otherwise.
+#[pyfunction]
+#[pyo3(signature = (radius, options))]
+pub fn sampling_settings(radius: f64, options: &Bound<'_, PyDict>) -> PyResult<PySettings> {
+    let s = with_options(ComputeSettings::new(Vec::new(), radius), options)?;
+    s.validate_sampling().map_err(to_py)?;
+    Ok(PySettings { inner: s })
+}
+
+/// Validates options on their own, before there is a mesh or a radius.
+#[pyfunction]
+pub fn check_options(options: &Bound<'_, PyDict>) -> PyResult<()> {
+    with_options(ComputeSettings::new(Vec::new(), f64::NAN), options)?.validate_options().map_err(to_py)
+}
+
+fn with_options(mut settings: ComputeSettings, options: &Bound<'_, PyDict>) -> PyResult<ComputeSettings> {
+    for (key, value) in options.iter() {
+        let name: String = key.extract()?;
+        settings.set_option(&name, &given(&name, &value)?).map_err(to_py)?;
+    }
+    Ok(settings)
 }
 
 /// Validated settings of a feature computation.

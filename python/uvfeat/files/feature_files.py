@@ -67,7 +67,7 @@ class FeatureJob:
         check_resolution(self.resolution)
         if self.query not in CHOICES["query"]:
             raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {self.query!r}")
-        _core.compute_settings(list(self.features), 1.0, {
+        _core.check_options({
             "samples": self.samples, "compute_resolution": check_resolution(self.compute_resolution, "compute_resolution"),
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
             "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error})

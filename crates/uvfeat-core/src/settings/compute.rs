@@ -101,13 +101,38 @@ impl ComputeSettings {
     /// # Errors
     /// [`UvfeatError::InvalidParameter`] naming the parameter and the valid range.
     pub fn validate(&self) -> Result<()> {
-        let invalid = |name: &'static str, reason: String| Err(UvfeatError::InvalidParameter { name, reason });
         if self.features.is_empty() {
-            return invalid("features", "ask for at least one feature".into());
+            return Err(UvfeatError::InvalidParameter {
+                name: "features",
+                reason: "ask for at least one feature".into(),
+            });
         }
+        self.validate_sampling()
+    }
+
+    /// Checks the radius and the options: what sampling neighbourhoods needs (no estimator runs on
+    /// a user-defined operator's samples).
+    ///
+    /// # Errors
+    /// As [`ComputeSettings::validate`].
+    pub fn validate_sampling(&self) -> Result<()> {
         if !(self.radius.is_finite() && self.radius > 0.0) {
-            return invalid("radius", format!("must be a positive, finite length, got {}", self.radius));
+            return Err(UvfeatError::InvalidParameter {
+                name: "radius",
+                reason: format!("must be a positive, finite length, got {}", self.radius),
+            });
         }
+        self.validate_options()
+    }
+
+    /// Checks the options alone, before there is a mesh to resolve a radius on (a batch checks
+    /// its settings once, not once per mesh); the checks that read the features (the geodesic
+    /// distances of the geodesic-area K) run again with them in [`ComputeSettings::validate`].
+    ///
+    /// # Errors
+    /// As [`ComputeSettings::validate`].
+    pub fn validate_options(&self) -> Result<()> {
+        let invalid = |name: &'static str, reason: String| Err(UvfeatError::InvalidParameter { name, reason });
         if self.samples < 4 || self.samples > 65_536 {
             return invalid("samples", format!("must be between 4 and 65536, got {}", self.samples));
         }
