@@ -74,10 +74,8 @@ def resolve_radius(radius, diagonal: float) -> float:
 
 
 def resolve_options(options: dict, paper_mode: bool) -> dict:
-    """Defaults, then the paper's choices, then the caller's options; unknown names are errors."""
-    unknown = sorted(set(options) - set(DEFAULT_OPTIONS))
-    if unknown:
-        raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(sorted(DEFAULT_OPTIONS))}")
+    """Defaults, then the paper's choices, then the caller's options. The core checks their names,
+    kinds and ranges (``query``, which picks how the maps are read, is checked here)."""
     resolved = dict(DEFAULT_OPTIONS)
     if paper_mode:
         resolved.update(PAPER_OPTIONS)
@@ -85,6 +83,10 @@ def resolve_options(options: dict, paper_mode: bool) -> dict:
                       "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
                       "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=3)
     resolved.update(options)
+    _core.check_options({name: value.item() if isinstance(value, np.generic) else value
+                         for name, value in resolved.items() if name not in PER_VERTEX_OPTIONS})
+    if resolved["query"] not in CHOICES["query"]:
+        raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {resolved['query']!r}")
     return resolved
 
 
