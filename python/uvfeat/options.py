@@ -47,7 +47,7 @@ def feature_names(features) -> list[str]:
 
 def parse_radius(radius) -> tuple[float, bool]:
     """A radius's number and whether it is a percentage of the diagonal (``"2%"`` -> ``(2.0,
-    True)``); rejects what is not a positive, finite length."""
+    True)``); rejects what is neither. The core checks the length itself (positive, finite)."""
     if isinstance(radius, str):
         match = re.fullmatch(r"\s*([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(%?)\s*", radius)
         if not match:
@@ -57,14 +57,12 @@ def parse_radius(radius) -> tuple[float, bool]:
         value, percent = float(radius), False
     else:
         raise InvalidParameterError(f"radius must be a number or a string like '2%', got {radius!r}")
-    if not np.isfinite(value) or value <= 0:
-        raise InvalidParameterError(f"radius must be a positive, finite length, got {radius!r}")
     return value, percent
 
 
 def resolve_radius(radius, diagonal: float) -> float:
     """A radius in object units from a number or a percentage string of the bounding-box diagonal
-    (``"2%"``); rejects r <= 0, NaN and radii beyond the whole mesh."""
+    (``"2%"``); rejects radii beyond the whole mesh, which only the mesh knows."""
     number, percent = parse_radius(radius)
     value = number * diagonal / 100.0 if percent else number
     if value > diagonal:

@@ -62,15 +62,17 @@ class FeatureJob:
         """Checks every setting, so that a bad one is one error before any mesh, not one per mesh."""
         object.__setattr__(self, "features", tuple(feature_names(self.features)))
         object.__setattr__(self, "radii", tuple(radius_list(self.radii)))
-        for radius in self.radii:
-            parse_radius(radius)
         check_resolution(self.resolution)
         if self.query not in CHOICES["query"]:
             raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {self.query!r}")
-        _core.check_options({
+        options = {
             "samples": self.samples, "compute_resolution": check_resolution(self.compute_resolution, "compute_resolution"),
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
-            "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error})
+            "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error}
+        # Each radius's number (a length, or a percentage of a diagonal not known yet) must be a
+        # positive, finite length to the core as well.
+        for radius in self.radii:
+            _core.sampling_settings(parse_radius(radius)[0], options)
         if self.directions and self.method != "fit":
             raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
 
