@@ -36,8 +36,8 @@ test-rs:
 	cargo clippy --workspace --all-targets -q -- -D warnings
 	cargo test --workspace --exclude uvfeat-python
 
-# Two or more processes (up to 4): the suite waits on subprocesses, clusters and one-thread
-# Python as much as on the engine's parallel loops.
+# One process per core, up to 4: the suite waits on subprocesses, clusters and one-thread Python
+# as much as on the engine's parallel loops.
 test-py: install-test
 	$(BIN)/python -m pytest -q -n auto --maxprocesses 4 --dist worksteal tests
 

@@ -1,7 +1,7 @@
 """Fuzzes the core entry points on random arrays: ``Mesh`` (positions, faces, UVs with NaN, Inf,
 huge and out-of-range values), ``Atlas``, ``Atlas.compute`` (both quadratures), ``Atlas.locate`` and
 ``Atlas.update`` with random parameters, the automatic atlas (``uvfeat.unwrap.chart_uvs``) and the core's
-pictures of per-vertex values (``_core.shaded_view``, behind ``uvfeat.render``). Run (no corpus needed)::
+pictures of per-vertex values (``_core.shaded_view``, behind ``uvfeat.pictures.render``). Run (no corpus needed)::
 
     .venv/bin/python fuzz/fuzz_core.py fuzz/corpus/core -max_total_time=60 -timeout=20
 

@@ -65,6 +65,10 @@ def test_the_smooth_surface_is_the_one_a_coarse_mesh_samples():
     assert errors["facets"][0] > 0.07 and errors["facets"][1] > 0.035, errors
     with pytest.raises(uvfeat.InvalidParameterError, match="surface"):
         converged_reference(torus, "mean_curvature", 0.25, surface="phong")
+    # A face without area and a vertex on no face keep their flat positions.
+    odd = uvfeat.Mesh(np.vstack([torus.positions, [[9.0, 9.0, 9.0]]]), np.vstack([torus.faces, [[0, 0, 1]]]))
+    lifted = converged_reference(odd, "mean_curvature", 0.25, vertices=rows, max_levels=1, surface="smooth")
+    assert np.isfinite(lifted["mean_curvature"]).all()
 
 
 def test_vertices_split_at_seams_are_welded_and_keep_their_rows(coarse_torus):

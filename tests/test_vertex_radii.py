@@ -109,7 +109,7 @@ def test_map_texels_take_the_radius_of_their_surface_point():
     assert mixed["mean_curvature"].vertex_flags()["truncated"].shape == (torus().n_vertices,)
 
 
-def test_sphere_maps_give_one_over_r_at_every_texel_at_any_mix_of_radii():
+def test_sphere_maps_keep_the_spheres_curvatures_at_every_texel_at_any_mix_of_radii():
     radii = mixed_radii(sphere(), 0.15, 0.8)
     atlas = uvfeat.Atlas(sphere(), resolution=512)
     maps = atlas.compute(HK, radii, compute_resolution=256)

@@ -28,6 +28,7 @@ __all__ = [
     "option_choices_by_name",
     "compute_maps",
     "vertex_feature_values",
+    "sums_apply",
     "neighbourhood_tile_arrays",
     "ReferenceMesh",
 ]
@@ -200,6 +201,10 @@ def option_choices_by_name() -> dict[str, list[str]]:
     """The names each choice option takes, the default first."""
 
 def compute_maps(atlas: Atlas, settings: ComputeSettings) -> FeatureMaps: ...
+def sums_apply(atlas: Atlas, settings: ComputeSettings) -> bool:
+    """Whether `settings` are evaluated at the vertices from the surfels' moments on `atlas` (the
+    core's choice of integration) rather than read from maps."""
+
 def vertex_feature_values(
     atlas: Atlas, settings: ComputeSettings, radii: NDArray[np.float64] | None = None
 ) -> tuple[list[NDArray[np.float32]], NDArray[np.uint32], NDArray[np.uint32]]: ...

@@ -73,20 +73,26 @@ def _lifted_onto_smooth_surface(positions: np.ndarray, faces: np.ndarray, flat: 
     for corner in range(3):
         np.add.at(sums, faces[:, corner], normals)
     normals = sums / np.maximum(np.linalg.norm(sums, axis=1, keepdims=True), np.finfo(float).tiny)
-    owner = np.empty(len(flat), dtype=np.int64)
+    # A vertex on no face (the file's, kept by the welding) stays where it is.
+    owner = np.full(len(flat), -1, dtype=np.int64)
     owner[refined_faces.reshape(-1)] = np.repeat(np.arange(len(refined_faces)) // 4 ** level, 3)
-    corners = faces[owner]
+    lifted = flat.copy()
+    used = owner >= 0
+    flat, corners = flat[used], faces[owner[used]]
     x = positions[corners]                                        # (n, 3, 3)
     e1, e2, d = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0], flat - x[:, 0]
     g11, g12, g22 = (e1 * e1).sum(1), (e1 * e2).sum(1), (e2 * e2).sum(1)
     r1, r2 = (e1 * d).sum(1), (e2 * d).sum(1)
     det = g11 * g22 - g12 * g12
+    area = det > 0
     with np.errstate(invalid="ignore", divide="ignore"):
         b1, b2 = (g22 * r1 - g12 * r2) / det, (g11 * r2 - g12 * r1) / det
-    weights = np.nan_to_num(np.stack([1 - b1 - b2, b1, b2], axis=1))  # a degenerate face stays flat
+    # A face without area has no barycentrics: its points keep their flat positions.
+    weights = np.where(area[:, None], np.stack([1 - b1 - b2, b1, b2], axis=1), 0.0)
     n = normals[corners]
     heights = ((x - flat[:, None]) * n).sum(2)
-    return flat + 0.5 * (weights[..., None] * heights[..., None] * n).sum(1)
+    lifted[used] = flat + 0.5 * (weights[..., None] * heights[..., None] * n).sum(1)
+    return lifted
 
 
 def _change(finer: np.ndarray, coarser: np.ndarray) -> float:

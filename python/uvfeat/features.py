@@ -18,7 +18,7 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
-from .options import PER_VERTEX_OPTIONS, check_resolution, feature_names, resolve_options, resolve_radius
+from .options import check_resolution, core_options, feature_names, resolve_options, resolve_radius
 from .vertex_radii import levels, per_vertex_radii, read_levels, texel_radii
 
 #: How the notes about flagged vertices name the scale when each vertex has its own radius.
@@ -114,8 +114,9 @@ class FeatureMap:
         mesh = self._atlas.mesh
         corner_radii = None
         if self.levels is not None:  # a welded vertex takes its first row's radius
+            welded, first_row = np.unique(mesh.vertex_ids, return_index=True)
             radius_of = np.empty(mesh.topology.n_geometric_vertices)
-            radius_of[mesh.vertex_ids[::-1]] = self.radius[::-1]
+            radius_of[welded] = self.radius[first_row]
             corner_radii = radius_of[vertex]
         corner = self._by_radius([values[self._index] for _, _, values in self._cache["corners"]],
                                  radii=corner_radii).astype(np.float64)
@@ -161,10 +162,7 @@ class FeatureMap:
 
 
 def _core_options(samples, resolution, adaptive, seed, opts) -> dict:
-    # The core checks every option's kind and range; NumPy scalars become Python numbers first.
-    given = dict(opts, samples=samples, compute_resolution=resolution, adaptive=adaptive, seed=seed)
-    return {name: value.item() if isinstance(value, np.generic) else value for name, value in given.items()
-            if name not in PER_VERTEX_OPTIONS}
+    return core_options(dict(opts, samples=samples, compute_resolution=resolution, adaptive=adaptive, seed=seed))
 
 
 def _core_settings(names, radius, samples, resolution, adaptive, seed, opts):
@@ -231,7 +229,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
             texture=gather(lambda m, k=k: m.values(k)),
             standard_error=gather(lambda m, k=k: m.standard_errors(k)) if has_errors else None,
             **shared,
-            summary=all_maps[0].summary if len(all_maps) == 1 and own_radii is None else [m.summary for m in all_maps],
+            summary=all_maps[0].summary if not stack and own_radii is None else [m.summary for m in all_maps],
             settings=described,
             levels=None if own_radii is None else np.array(radii),
             _atlas=atlas,
@@ -252,23 +250,24 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     :func:`compute_maps`, read with ``query``."""
     opts = resolve_options(options, paper_mode)
     own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
-    at_vertices = opts["quadrature"] == "surfels" and opts["method"] == "integral"
-    if not at_vertices:
-        maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
-                            adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
-        return {name: feature.per_vertex() for name, feature in maps.items()}
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
     resolution = check_resolution(compute_resolution, "compute_resolution")
-    # Per call: the settings' radius, the vertices' own radii (which the core reads instead), a label.
+    # Per call: the settings (at the largest of the vertices' own radii, which the core reads
+    # instead), the vertices' radii, a label.
     if own_radii is not None:
-        calls = [(float(own_radii.max()), own_radii, OWN_RADII)]
+        calls = [(_core_settings(names, float(own_radii.max()), samples, resolution, adaptive, seed, opts), own_radii,
+                  OWN_RADII)]
     else:
-        calls = [(resolve_radius(r, diagonal), None, _scale(r)) for r in (radius if stack else [radius])]
+        calls = [(_core_settings(names, resolve_radius(r, diagonal), samples, resolution, adaptive, seed, opts), None,
+                  _scale(r)) for r in (radius if stack else [radius])]
+    if not _core.sums_apply(atlas._core, calls[0][0]):
+        maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
+                            adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
+        return {name: feature.per_vertex() for name, feature in maps.items()}
     per_radius, texts = [], []
-    for r, radii, label in calls:
-        settings = _core_settings(names, r, samples, resolution, adaptive, seed, opts)
+    for settings, radii, label in calls:
         values, _, border = _core.vertex_feature_values(atlas._core, settings, radii)
         per_radius.append(values)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.

@@ -81,11 +81,21 @@ def resolve_options(options: dict, paper_mode: bool) -> dict:
                       "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
                       "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=3)
     resolved.update(options)
-    _core.check_options({name: value.item() if isinstance(value, np.generic) else value
-                         for name, value in resolved.items() if name not in PER_VERTEX_OPTIONS})
-    if resolved["query"] not in CHOICES["query"]:
-        raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {resolved['query']!r}")
+    _core.check_options(core_options(resolved))
+    check_query(resolved["query"])
     return resolved
+
+
+def core_options(options: dict) -> dict:
+    """The options the core takes (not the per-vertex query), NumPy scalars as Python numbers."""
+    return {name: value.item() if isinstance(value, np.generic) else value for name, value in options.items()
+            if name not in PER_VERTEX_OPTIONS}
+
+
+def check_query(query) -> None:
+    """The per-vertex query, the one option the core's computation does not take."""
+    if query not in CHOICES["query"]:
+        raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {query!r}")
 
 
 def check_resolution(resolution, name: str = "resolution") -> int:

@@ -93,8 +93,9 @@ def texel_radii(atlas, radii: np.ndarray, width: int) -> np.ndarray:
     with np.errstate(invalid="ignore", divide="ignore"):
         b1 = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / det
         b2 = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / det
-    weights = np.clip(np.nan_to_num(np.stack([1 - b1 - b2, b1, b2], axis=-1), nan=1 / 3), 0.0, None)
-    weights /= np.maximum(weights.sum(axis=-1, keepdims=True), 1e-300)
+    # A UV triangle without area has no barycentrics: its corners' mean radius.
+    weights = np.where((det != 0)[:, None], np.clip(np.stack([1 - b1 - b2, b1, b2], axis=-1), 0.0, None), 1.0)
+    weights /= weights.sum(axis=-1, keepdims=True)
     out = np.full((width, width), np.nan)
     out[covered] = (weights * radii[mesh.faces[faces[covered]]]).sum(axis=-1)
     return out

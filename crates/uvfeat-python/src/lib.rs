@@ -35,6 +35,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(settings::sampling_settings, m)?)?;
     m.add_function(wrap_pyfunction!(settings::check_options, m)?)?;
     m.add_function(wrap_pyfunction!(output::vertex_feature_values, m)?)?;
+    m.add_function(wrap_pyfunction!(output::sums_apply, m)?)?;
     m.add_function(wrap_pyfunction!(output::compute_maps, m)?)?;
     m.add_function(wrap_pyfunction!(output::neighbourhood_tile_arrays, m)?)?;
     m.add_class::<reference::PyReferenceMesh>()?;

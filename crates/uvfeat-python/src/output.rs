@@ -172,6 +172,13 @@ pub fn compute_maps(py: Python<'_>, atlas: &PyAtlas, settings: &PySettings) -> P
     Ok(PyFeatureMaps { inner, settings: settings.inner.clone() })
 }
 
+/// Whether `settings` are evaluated at the vertices from the surfels' moments on `atlas` (the
+/// core's choice of integration) rather than read from maps.
+#[pyfunction]
+pub fn sums_apply(atlas: &PyAtlas, settings: &PySettings) -> bool {
+    uvfeat_core::output::sums_apply(atlas.core(), &settings.inner)
+}
+
 /// One array of values per feature, the surfels each vertex summed, and those of them a mesh
 /// border passes through.
 type VertexArrays<'py> = (Vec<Bound<'py, PyArrayDyn<f32>>>, Bound<'py, PyArrayDyn<u32>>, Bound<'py, PyArrayDyn<u32>>);

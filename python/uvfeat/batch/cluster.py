@@ -111,7 +111,7 @@ def _stop_workers(cluster) -> None:
         pid = getattr(getattr(getattr(nanny, "process", None), "process", None), "pid", None)
         if pid:
             with contextlib.suppress(OSError):
-                os.kill(pid, signal.SIGKILL)
+                os.kill(pid, getattr(signal, "SIGKILL", signal.SIGTERM))  # Windows has no SIGKILL
 
 
 def run_tasks(client, function, calls: list[tuple], on_lost):

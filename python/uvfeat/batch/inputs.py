@@ -80,8 +80,8 @@ def batch_inputs(inputs) -> list[str | MemoryMesh]:
 
 
 def memory_folder(name: str, taken: set[str]) -> str:
-    """An output folder for an in-memory mesh called ``name``: one path component (separators,
-    ``..`` and leading dots replaced), not in ``taken``."""
+    """An output folder for an in-memory mesh called ``name``: one path component (separators
+    replaced by ``_``, leading dots removed), not in ``taken``."""
     folder = re.sub(r"[/\\:\x00]", "_", name).lstrip(".") or "mesh"
     unique, k = folder, 2
     while unique in taken:

@@ -26,7 +26,8 @@ def batch(paths, features, radius, client=None, *, out: str = "uvfeat-out/batch"
         Mesh files, folders (searched recursively for mesh files) and glob patterns; meshes held in
         memory (any of :data:`uvfeat.interop.ACCEPTED`, in the list, named after their ``name``
         attribute, or as a ``{name: mesh}`` dict), sent to the workers whole and written under
-        their names (rows ``"<name> (in memory)"``; unchanged arrays count as finished).
+        their names (rows ``"<name> (in memory)"``; unchanged arrays count as finished; their UVs are
+        taken as given, so ``strict_uv`` applies to files only).
     features, radius
         As for ``uvfeat compute``: names (or "all"), one radius or several (a list or "1%,4%").
     client : distributed.Client, optional

@@ -15,7 +15,8 @@ from .._core import __version__
 from ..errors import InvalidParameterError
 from ..io import atomic_file
 from ..notes import recorded_notes
-from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, check_resolution, feature_names, parse_radius
+from ..options import (ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query, check_resolution, feature_names,
+                       parse_radius)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -63,16 +64,17 @@ class FeatureJob:
         object.__setattr__(self, "features", tuple(feature_names(self.features)))
         object.__setattr__(self, "radii", tuple(radius_list(self.radii)))
         check_resolution(self.resolution)
-        if self.query not in CHOICES["query"]:
-            raise InvalidParameterError(f"query must be one of {CHOICES['query']}, got {self.query!r}")
+        check_query(self.query)
         options = {
             "samples": self.samples, "compute_resolution": check_resolution(self.compute_resolution, "compute_resolution"),
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
             "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error}
-        # Each radius's number (a length, or a percentage of a diagonal not known yet) must be a
-        # positive, finite length to the core as well.
+        if self.paper_mode:
+            options = {**PAPER_OPTIONS, **options}
+        # The core checks the settings with each radius's number (a length, or a percentage of a
+        # diagonal not known yet: positive and finite either way).
         for radius in self.radii:
-            _core.sampling_settings(parse_radius(radius)[0], options)
+            _core.compute_settings(list(self.features), parse_radius(radius)[0], options)
         if self.directions and self.method != "fit":
             raise InvalidParameterError("--directions needs --method fit (principal directions come from the fit)")
 
