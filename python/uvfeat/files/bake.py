@@ -224,7 +224,8 @@ def bake(mesh, features, radius, *, out: str = "uvfeat-out/bake", **options) -> 
         The folder of the files.
     **options
         ``samples``, ``resolution``, ``compute_resolution``, ``adaptive``, ``paper_mode``, ``seed``,
-        ``query``, ``method``, ``sampling``, ``quadrature``, ``surface``, ``standard_error``, ``uv``.
+        ``query``, ``method``, ``sampling``, ``quadrature``, ``surface``, ``standard_error``, ``uv``
+        (a mesh's UVs are taken as given: ``strict_uv`` is for files; bakes hold no directions).
 
     Returns
     -------
@@ -259,7 +260,7 @@ def write_bakes(mesh: Mesh, job, out: str, load_notes: list[str], advance=lambda
                             "resolution": job.resolution, "compute_resolution": job.compute_resolution,
                             "method": job.method, "seed": job.seed}}
     advance("pre-processing + rasterising", done=False)
-    atlas = Atlas(mesh, resolution=job.resolution)
+    atlas = Atlas(mesh, resolution=job.resolution, precision="f16" if job.paper_mode else "f32")
     summary["warnings"] += atlas.warnings()
     advance("buffers ready")
     for computed in computed_radii(atlas, job, advance):
