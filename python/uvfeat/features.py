@@ -18,7 +18,7 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
-from .options import check_resolution, core_options, feature_names, resolve_options, resolve_radius
+from .options import core_options, feature_names, resolve_options, resolve_radius
 from .vertex_radii import levels, per_vertex_radii, read_levels, texel_radii
 
 #: How the notes about flagged vertices name the scale when each vertex has its own radius.
@@ -173,8 +173,8 @@ def compute_maps_settings(atlas, radius, samples, compute_resolution, seed, opti
     """Core settings for neighbourhood tiles: sampling alone, no estimator runs on them."""
     opts = resolve_options(options, paper_mode=False)
     r = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
-    resolution = check_resolution(compute_resolution, "compute_resolution")
-    return _core.sampling_settings(r, _core_options(samples, resolution, False, seed, opts)), resolution
+    settings = _core.sampling_settings(r, _core_options(samples, compute_resolution, False, seed, opts))
+    return settings, int(compute_resolution)  # a whole number: the core checked it
 
 
 def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,
@@ -186,7 +186,6 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     given = list(levels(own_radii)) if own_radii is not None else radius if stack else [radius]
     radii = [resolve_radius(r, atlas.mesh.bounding_box_diagonal) for r in given]
-    compute_resolution = check_resolution(compute_resolution, "compute_resolution")
     if paper_mode and atlas.precision != "f16":
         warnings.warn("paper_mode: the paper stores buffers as half floats; build the Atlas with precision='f16' "
                       "to reproduce that too", UserWarning, stacklevel=3)
@@ -196,6 +195,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
         started = time.perf_counter()
         all_maps.append(_core.compute_maps(atlas._core, settings))
         timings.append(time.perf_counter() - started)
+    compute_resolution = int(compute_resolution)  # a whole number: the core checked it
     described = dict(opts, samples=int(samples), compute_resolution=compute_resolution, adaptive=bool(adaptive),
                      seed=int(seed), paper_mode=bool(paper_mode), radii=radii, resolution=atlas.resolution,
                      precision=atlas.precision, features_s=timings)
@@ -253,22 +253,22 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
-    resolution = check_resolution(compute_resolution, "compute_resolution")
+    def settings(r):
+        return _core_settings(names, r, samples, compute_resolution, adaptive, seed, opts)
+
     # Per call: the settings (at the largest of the vertices' own radii, which the core reads
     # instead), the vertices' radii, a label.
     if own_radii is not None:
-        calls = [(_core_settings(names, float(own_radii.max()), samples, resolution, adaptive, seed, opts), own_radii,
-                  OWN_RADII)]
+        calls = [(settings(float(own_radii.max())), own_radii, OWN_RADII)]
     else:
-        calls = [(_core_settings(names, resolve_radius(r, diagonal), samples, resolution, adaptive, seed, opts), None,
-                  _scale(r)) for r in (radius if stack else [radius])]
+        calls = [(settings(resolve_radius(r, diagonal)), None, _scale(r)) for r in (radius if stack else [radius])]
     if not _core.sums_apply(atlas._core, calls[0][0]):
         maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
         return {name: feature.per_vertex() for name, feature in maps.items()}
     per_radius, texts = [], []
-    for settings, radii, label in calls:
-        values, _, border = _core.vertex_feature_values(atlas._core, settings, radii)
+    for call_settings, radii, label in calls:
+        values, _, border = _core.vertex_feature_values(atlas._core, call_settings, radii)
         per_radius.append(values)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}

@@ -66,7 +66,7 @@ class FeatureJob:
         check_resolution(self.resolution)
         check_query(self.query)
         options = {
-            "samples": self.samples, "compute_resolution": check_resolution(self.compute_resolution, "compute_resolution"),
+            "samples": self.samples, "compute_resolution": self.compute_resolution,
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
             "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error}
         if self.paper_mode:
