@@ -23,7 +23,7 @@ import numpy as np
 
 from .errors import InvalidParameterError
 from .interop import as_mesh
-from .mesh import Mesh
+from .mesh import Mesh, vertex_normals
 from .options import feature_names, resolve_radius
 from .reference import Reference
 
@@ -68,11 +68,7 @@ def _lifted_onto_smooth_surface(positions: np.ndarray, faces: np.ndarray, flat: 
     (``positions``, ``faces``) moved onto the coarse mesh's smooth (Phong, 1/2) surface. Midpoint
     subdivision gives each face four consecutive children, so a refined face's coarse face is its
     index over ``4 ** level``; a vertex on a coarse edge gets the same point from either face."""
-    sums = np.zeros_like(positions)
-    normals = np.cross(positions[faces[:, 1]] - positions[faces[:, 0]], positions[faces[:, 2]] - positions[faces[:, 0]])
-    for corner in range(3):
-        np.add.at(sums, faces[:, corner], normals)
-    normals = sums / np.maximum(np.linalg.norm(sums, axis=1, keepdims=True), np.finfo(float).tiny)
+    normals = vertex_normals(positions, faces)
     # A vertex on no face (the file's, kept by the welding) stays where it is.
     owner = np.full(len(flat), -1, dtype=np.int64)
     owner[refined_faces.reshape(-1)] = np.repeat(np.arange(len(refined_faces)) // 4 ** level, 3)

@@ -61,6 +61,17 @@ def _index_rows(values, count: int, name: str, what: str) -> np.ndarray:
     return np.ascontiguousarray(array)
 
 
+def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Unit area-weighted vertex normals (zero where a vertex has no area around it)."""
+    corners = positions[faces]
+    face_normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    corner_vertices = faces.reshape(-1)
+    normals = np.column_stack([np.bincount(corner_vertices, np.repeat(face_normals[:, axis], 3), len(positions))
+                               for axis in range(3)])
+    length = np.linalg.norm(normals, axis=1, keepdims=True)
+    return normals / np.where(length > 0, length, 1.0)
+
+
 def normalize_uvs(uvs: np.ndarray) -> tuple[np.ndarray, tuple[float, float, float]]:
     """Maps UVs into [0, 1]^2 by one translation and one uniform scale (the aspect ratio and the
     layout are kept; nothing is clipped). Returns the UVs and ``(offset_u, offset_v, scale)``."""

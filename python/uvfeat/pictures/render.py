@@ -40,17 +40,6 @@ def view_coordinates(positions: np.ndarray, view: tuple[float, float], up: str,
     return np.einsum("ij,vj->vi", view_rotation(*view), (positions - centre)[:, UP_AXES[up]])
 
 
-def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Unit area-weighted vertex normals (zero where a vertex has no area around it)."""
-    corners = positions[faces]
-    face_normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    corner_vertices = faces.reshape(-1)
-    normals = np.column_stack([np.bincount(corner_vertices, np.repeat(face_normals[:, axis], 3), len(positions))
-                               for axis in range(3)])
-    length = np.linalg.norm(normals, axis=1, keepdims=True)
-    return normals / np.where(length > 0, length, 1.0)
-
-
 def front_side(positions: np.ndarray, faces: np.ndarray) -> int:
     """Which side of the faces can be seen: 0 for an open mesh (both: its inside shows through
     the borders), +1 for a closed mesh whose faces turn counter-clockwise seen from outside, -1

@@ -206,7 +206,7 @@ class Viewer:
         self.title = title
 
     def _add_glyphs(self, directions: np.ndarray) -> None:
-        from .render import vertex_normals
+        from ..mesh import vertex_normals
 
         x, y = tangent_basis(vertex_normals(self.mesh.positions, self.mesh.faces))
         for k, name in enumerate(("d1 (direction of k1)", "d2 (direction of k2)")):
