@@ -19,7 +19,7 @@ from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
 from .options import core_options, feature_names, resolve_options, resolve_radius
-from .vertex_radii import levels, per_vertex_radii, read_levels, texel_radii
+from .vertex_radii import LevelReader, levels, per_vertex_radii, texel_radii
 
 #: How the notes about flagged vertices name the scale when each vertex has its own radius.
 OWN_RADII = "at each vertex's own radius"
@@ -88,7 +88,13 @@ class FeatureMap:
         the nearest level's where values cannot be blended)."""
         if self.levels is None:
             return per_level[0] if not self.is_stack else np.stack(per_level)
-        return read_levels(np.stack(per_level), self.levels, self.radius if radii is None else radii, interpolated)
+        if radii is None:
+            if "vertex levels" not in self._cache:  # shared by the features of one computation
+                self._cache["vertex levels"] = LevelReader(self.levels, self.radius)
+            reader = self._cache["vertex levels"]
+        else:
+            reader = LevelReader(self.levels, radii)
+        return reader.read(np.stack(per_level), interpolated)
 
     def per_vertex(self, query: str | None = None) -> np.ndarray:
         """Per-vertex values, ``(n_vertices,)`` (``(n_radii, n_vertices)`` for a stack), one per
@@ -202,17 +208,16 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
 
     if own_radii is not None:
         texel_radius = texel_radii(atlas, own_radii, compute_resolution)
-        covered = np.isfinite(texel_radius)
         # Off the charts every map is empty: any level will do there.
-        texel_radius = np.where(covered, texel_radius, radii[0]).ravel()
+        texels = LevelReader(np.array(radii), np.where(np.isfinite(texel_radius), texel_radius, radii[0]).ravel())
 
     def gather(get, interpolated=True):
         arrays = [get(m) for m in all_maps]
         if own_radii is None:
             return np.stack(arrays) if stack else arrays[0]
         values = np.stack(arrays)
-        flat = values.reshape(len(arrays), texel_radius.size, *values.shape[3:])
-        return read_levels(flat, np.array(radii), texel_radius, interpolated).reshape(values.shape[1:])
+        flat = values.reshape(len(arrays), values.shape[1] * values.shape[2], *values.shape[3:])
+        return texels.read(flat, interpolated).reshape(values.shape[1:])
 
     # The neighbourhoods' maps are the same for every feature: one read-only copy serves them all.
     neighbourhood_maps = ["n_valid", "n_missing", "n_border", "area_ratio", "sheet_area"]

@@ -52,27 +52,41 @@ def levels(radii: np.ndarray) -> np.ndarray:
     return np.array([low]) if steps <= 0 else low * (high / low) ** (np.arange(steps + 1) / steps)
 
 
+class LevelReader:
+    """Values given at the radii ``at`` (level ``k`` at ``at[k]``) read at each of ``radii``: where
+    each radius lies among the levels is worked out once, for every array read."""
+
+    def __init__(self, at: np.ndarray, radii: np.ndarray):
+        position = (np.zeros(len(radii)) if len(at) == 1 else
+                    np.interp(np.log(radii), np.log(at), np.arange(len(at), dtype=np.float64)))
+        self.columns = np.arange(len(radii))
+        self.below = np.minimum(position.astype(np.int64), max(len(at) - 2, 0))
+        self.t = position - self.below
+        self.nearest_level = np.rint(position).astype(np.int64)
+
+    def interpolate(self, values: np.ndarray) -> np.ndarray:
+        """``values`` (``(n_levels, n)``) linearly in ``log r`` between the two levels around
+        each radius."""
+        if len(values) == 1:
+            return values[0]
+        t = self.t.astype(values.dtype)
+        low, high = values[self.below, self.columns], values[self.below + 1, self.columns]
+        # A radius on a level reads that level alone (its neighbour level may be NaN there).
+        return np.where(t == 0, low, np.where(t == 1, high, (1 - t) * low + t * high))
+
+    def nearest(self, values: np.ndarray) -> np.ndarray:
+        """``values`` (``(n_levels, n, ...)``) of the level nearest each radius in ``log r``: for
+        what cannot be blended (counts, flags, directions)."""
+        return values[self.nearest_level, self.columns]
+
+    def read(self, values: np.ndarray, interpolated: bool = True) -> np.ndarray:
+        return self.interpolate(values) if interpolated else self.nearest(values)
+
+
 def interpolate(values: np.ndarray, at: np.ndarray, radii: np.ndarray) -> np.ndarray:
     """Per vertex, ``values`` (``(n_levels, n_vertices)``, level ``k`` at radius ``at[k]``) read at its
     radius, linearly in ``log r`` between the two levels around it."""
-    if len(at) == 1:
-        return values[0]
-    position = np.interp(np.log(radii), np.log(at), np.arange(len(at), dtype=np.float64))
-    below = np.minimum(position.astype(np.int64), len(at) - 2)
-    t = (position - below).astype(values.dtype)
-    columns = np.arange(values.shape[1])
-    low, high = values[below, columns], values[below + 1, columns]
-    # A vertex on a level reads that level alone (its neighbour level may be NaN there).
-    return np.where(t == 0, low, np.where(t == 1, high, (1 - t) * low + t * high))
-
-
-def nearest_level(at: np.ndarray, radii: np.ndarray) -> np.ndarray:
-    """Per radius, the index of the level of ``at`` nearest to it in ``log r`` (for what cannot be
-    interpolated: counts, flags, directions)."""
-    if len(at) == 1:
-        return np.zeros(len(radii), dtype=np.int64)
-    position = np.interp(np.log(radii), np.log(at), np.arange(len(at), dtype=np.float64))
-    return np.rint(position).astype(np.int64)
+    return LevelReader(at, radii).interpolate(values)
 
 
 def texel_radii(atlas, radii: np.ndarray, width: int) -> np.ndarray:
@@ -100,11 +114,3 @@ def texel_radii(atlas, radii: np.ndarray, width: int) -> np.ndarray:
     out[covered] = (weights * radii[mesh.faces[faces[covered]]]).sum(axis=-1)
     return out
 
-
-def read_levels(values: np.ndarray, at: np.ndarray, radii: np.ndarray, interpolated: bool = True) -> np.ndarray:
-    """``values`` (``(n_levels, n, ...)``, level ``k`` at radius ``at[k]``) read at each of the
-    ``n`` ``radii``: :func:`interpolate`\\ d (``(n_levels, n)`` values), or the nearest level's for
-    what cannot be blended."""
-    if interpolated:
-        return interpolate(values, at, radii)
-    return values[nearest_level(at, radii), np.arange(len(radii))]
