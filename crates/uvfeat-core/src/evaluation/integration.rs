@@ -36,22 +36,25 @@ impl Integration {
 
 /// How `settings` integrate each neighbourhood on `atlas`.
 pub fn integration(atlas: &Atlas, settings: &ComputeSettings) -> Integration {
-    let sampler = settings.sampler();
     match settings.quadrature {
         Quadrature::Surfels if settings.method == CurvatureMethod::Integral => Integration::SurfelSums,
         Quadrature::Surfels => Integration::SurfelSamples,
-        Quadrature::Pattern
-            if settings.sampling == SamplingPath::Shared
-                && fast_path_applies(atlas, &sampler)
-                && !settings.adaptive
-                && !settings.standard_errors
-                && settings.method == CurvatureMethod::Integral
-                && settings.volume_weighting == VolumeWeighting::Distance
-                && settings.overlaps == Overlaps::Keep
-                && !sampler.with_geodesic =>
-        {
-            Integration::SharedLattice
-        }
+        Quadrature::Pattern if shared_lattice_serves(atlas, settings) => Integration::SharedLattice,
         Quadrature::Pattern => Integration::PatternPerPoint,
     }
+}
+
+/// The shared lattice's conditions; the cheap ones first, since [`integration`] is asked per point.
+fn shared_lattice_serves(atlas: &Atlas, settings: &ComputeSettings) -> bool {
+    if settings.sampling != SamplingPath::Shared
+        || settings.adaptive
+        || settings.standard_errors
+        || settings.method != CurvatureMethod::Integral
+        || settings.volume_weighting != VolumeWeighting::Distance
+        || settings.overlaps != Overlaps::Keep
+    {
+        return false;
+    }
+    let sampler = settings.sampler();
+    fast_path_applies(atlas, &sampler) && !sampler.with_geodesic
 }
