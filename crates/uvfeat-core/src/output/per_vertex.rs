@@ -152,14 +152,20 @@ pub fn per_corner(atlas: &Atlas, maps: &FeatureMaps) -> (Vec<DVec2>, Vec<u32>, V
     let corners = VertexCorners::new(atlas);
     let n_features = maps.features.len();
     let mut values = vec![f64::NAN; corners.n_corners() * n_features];
-    values.par_chunks_mut(n_features.max(1)).enumerate().for_each(|(c, out)| {
-        let corner = corners.corner(c);
-        lookup(maps, corner.uv, corner.chart, out);
-    });
+    // Each corner is found once: its UV kept from the same parallel pass as its lookup.
+    let uvs: Vec<DVec2> = values
+        .par_chunks_mut(n_features.max(1))
+        .enumerate()
+        .map(|(c, out)| {
+            let corner = corners.corner(c);
+            lookup(maps, corner.uv, corner.chart, out);
+            corner.uv
+        })
+        .collect();
     let per_feature =
         (0..n_features).map(|f| values.iter().skip(f).step_by(n_features).map(|&v| v as f32).collect()).collect();
     let vertex = (0..corners.n_vertices()).flat_map(|g| std::iter::repeat_n(g as u32, corners.range(g).len()));
-    ((0..corners.n_corners()).map(|c| corners.corner(c).uv).collect(), vertex.collect(), per_feature)
+    (uvs, vertex.collect(), per_feature)
 }
 
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly

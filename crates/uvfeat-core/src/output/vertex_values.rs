@@ -91,6 +91,7 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
         })
         .collect();
     order.par_sort_unstable();
+    let shared_sums = settings.surfel_sums();
     let sorted: Vec<PixelResult> = order
         .par_iter()
         // One copy of the settings per job, its radius set per vertex where the vertices have their own.
@@ -108,10 +109,14 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                 let (position, normal) = (frame.positions[vertex], frame.normals[vertex]);
                 let centre =
                     SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution());
-                if let Some(radii) = radii {
-                    own.radius = radii[vertex];
-                }
-                let (stats, counts) = surfel_sums(atlas, &centre, &own.surfel_sums());
+                let sums = match radii {
+                    Some(radii) => {
+                        own.radius = radii[vertex];
+                        own.surfel_sums()
+                    }
+                    None => shared_sums,
+                };
+                let (stats, counts) = surfel_sums(atlas, &centre, &sums);
                 if counts.valid == 0 {
                     return PixelResult::EMPTY;
                 }
