@@ -35,7 +35,7 @@ def per_vertex_radii(radius, n_vertices: int) -> np.ndarray | None:
         return None
     if not np.issubdtype(radius.dtype, np.number):
         raise InvalidParameterError(f"per-vertex radii must be numbers (lengths in mesh units), got dtype {radius.dtype}")
-    radii = radius.astype(np.float64)
+    radii = radius.astype(np.float64, copy=False)
     bad = ~(np.isfinite(radii) & (radii > 0))
     if bad.any():
         vertex = int(np.flatnonzero(bad)[0])

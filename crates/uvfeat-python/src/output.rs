@@ -194,8 +194,8 @@ pub fn vertex_feature_values<'py>(
     radii: Option<PyReadonlyArray1<'_, f64>>,
 ) -> PyResult<VertexArrays<'py>> {
     let (core, s) = (atlas.core(), &settings.inner);
-    let radii = radii.map(|r| r.as_slice().map(<[f64]>::to_vec)).transpose()?;
-    let at_vertices = guarded(py, || match &radii {
+    let radii = radii.as_ref().map(|r| r.as_slice()).transpose()?;
+    let at_vertices = guarded(py, || match radii {
         Some(radii) => vertex_values_at_radii(core, s, radii),
         None => vertex_values(core, s),
     })?;
