@@ -4,6 +4,7 @@ files whole (:func:`atomic_file`)."""
 from __future__ import annotations
 
 import contextlib
+import glob
 import os
 import warnings
 from collections.abc import Iterator
@@ -203,6 +204,17 @@ def _tile_part_uvs(part_uvs: list[np.ndarray], margin: float = 0.01) -> list[np.
     return tiled
 
 
+#: What :func:`atomic_file`'s temporary names hold between the stem and the process id.
+PARTIAL = ".partial-"
+
+
+def remove_partials(folder: str | os.PathLike) -> None:
+    """Removes the temporary files of :func:`atomic_file` that a killed run left in ``folder``."""
+    for stale in glob.glob(os.path.join(glob.escape(os.fspath(folder)), f"*{PARTIAL}*")):
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(stale)
+
+
 @contextlib.contextmanager
 def atomic_file(path: str | os.PathLike) -> Iterator[str]:
     """A temporary name beside ``path`` to write to, renamed to ``path`` when the block ends
@@ -210,7 +222,7 @@ def atomic_file(path: str | os.PathLike) -> Iterator[str]:
     when the process is killed while writing. The name keeps the extension, from which NumPy,
     trimesh, Pillow and matplotlib take the format."""
     stem, extension = os.path.splitext(os.fspath(path))
-    temporary = f"{stem}.partial-{os.getpid()}{extension}"
+    temporary = f"{stem}{PARTIAL}{os.getpid()}{extension}"
     try:
         yield temporary
         os.replace(temporary, path)

@@ -5,7 +5,6 @@ settings, which a later batch run compares to decide whether the mesh is finishe
 
 from __future__ import annotations
 
-import glob
 import os
 import time
 from dataclasses import asdict, dataclass, field
@@ -13,7 +12,7 @@ from dataclasses import asdict, dataclass, field
 from .. import _core
 from .._core import __version__
 from ..errors import InvalidParameterError
-from ..io import atomic_file
+from ..io import atomic_file, remove_partials
 from ..notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query, check_resolution, feature_names,
                        parse_radius)
@@ -156,8 +155,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     from ..pictures.surface_plot import save_plot
 
     os.makedirs(out, exist_ok=True)
-    for stale in glob.glob(os.path.join(glob.escape(out), "*.partial-*")):  # a killed run's unfinished files
-        os.remove(stale)
+    remove_partials(out)
     summary = {"uvfeat": __version__, "mesh": mesh.name, "source": source or {}, "warnings": list(load_notes),
                "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
