@@ -6,9 +6,10 @@ import numpy as np
 
 from .atlas import Atlas
 from .interop import mesh_source
+from .options import ATLAS_RESOLUTION, SURFEL_RESOLUTION, per_vertex_defaults
 
 
-def compute(mesh, features, radius, *, resolution: int = 1024, precision: str = "f32",
+def compute(mesh, features, radius, *, resolution: int | None = None, precision: str = "f32",
             paper_mode: bool = False, **options) -> dict[str, np.ndarray]:
     """Per-vertex features of ``mesh`` (a :class:`~uvfeat.Mesh` or any of
     :data:`uvfeat.interop.ACCEPTED`), one value per vertex of it: per row of ``mesh.positions``,
@@ -19,6 +20,11 @@ def compute(mesh, features, radius, *, resolution: int = 1024, precision: str = 
     ``adaptive``, ``seed``, ``quadrature``, ...): with ``quadrature="surfels"`` the values are
     evaluated at the vertices, with no maps. For several calls on the same mesh keep an Atlas.
 
+    A mesh without UVs gets uvfeat's automatic atlas. On an atlas of more than one chart (that one,
+    or the mesh's own) each vertex is the centre of its own ball over the surfels
+    (``quadrature="surfels"``) at a ``resolution`` of 512, unless ``options`` name ``quadrature`` or
+    ``method`` (or ``paper_mode``); otherwise ``resolution`` defaults to 1024.
+
     Returns
     -------
     dict of str to ndarray
@@ -26,8 +32,12 @@ def compute(mesh, features, radius, *, resolution: int = 1024, precision: str = 
     """
     source = mesh_source(mesh)
     mesh = source.mesh
+    surfels = per_vertex_defaults(mesh, options, paper_mode)
     if not mesh.has_uvs:
-        mesh = mesh.with_atlas(resolution=resolution)
+        # Packed for the atlas resolution `load` unwraps at, so that both share the cached unwrap.
+        mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)
+    if resolution is None:
+        resolution = SURFEL_RESOLUTION if surfels else ATLAS_RESOLUTION
     if paper_mode:
         precision = "f16"
     atlas = Atlas(mesh, resolution=resolution, precision=precision)

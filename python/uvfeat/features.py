@@ -18,7 +18,7 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
-from .options import core_options, feature_names, resolve_options, resolve_radius
+from .options import core_options, feature_names, resolve_options, resolve_radius, per_vertex_defaults
 from .vertex_radii import LevelReader, levels, per_vertex_radii, texel_radii
 
 #: How the notes about flagged vertices name the scale when each vertex has its own radius.
@@ -252,8 +252,9 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     """The work behind :meth:`uvfeat.Atlas.per_vertex`: with ``quadrature="surfels"`` and the
     integral estimators each vertex is the centre of its own neighbourhood, summed over the
     surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
-    :func:`compute_maps`, read with ``query``."""
-    opts = resolve_options(options, paper_mode)
+    :func:`compute_maps`, read with ``query``. An atlas of more than one chart takes the surfels
+    unless ``options`` say otherwise (:func:`~uvfeat.options.per_vertex_defaults`)."""
+    opts = resolve_options({**per_vertex_defaults(atlas.mesh, options, paper_mode), **options}, paper_mode)
     own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))

@@ -33,6 +33,27 @@ DEFAULT_OPTIONS = {**{k: v for k, v in _CORE_DEFAULTS.items() if k not in ARGUME
 #: ``Atlas(mesh, precision="f16")``.
 PAPER_OPTIONS = _core.paper_options()
 
+#: What per-vertex values default to on an atlas of more than one chart (a scan's automatic atlas
+#: has hundreds, where the pattern's development overlaps itself across seams): each vertex the
+#: centre of its own ball, summed over the surfels (DESIGN.md §1.9).
+SURFEL_DEFAULTS = {"quadrature": "surfels"}
+
+#: The atlas resolution ``uvfeat.compute`` takes for those defaults: the surfel grid's.
+SURFEL_RESOLUTION = 512
+
+#: The atlas resolution ``uvfeat.compute`` takes otherwise.
+ATLAS_RESOLUTION = 1024
+
+
+def per_vertex_defaults(mesh, options: dict, paper_mode: bool) -> dict:
+    """:data:`SURFEL_DEFAULTS` where they are the default of ``mesh``'s per-vertex values: its atlas
+    has more than one chart, or it has no UVs (so uvfeat's atlas will cut it), and the call names
+    neither the quadrature, another method than the integral estimators (which the sums serve) nor
+    the paper's choices; otherwise nothing."""
+    if paper_mode or "quadrature" in options or options.get("method", DEFAULT_OPTIONS["method"]) != "integral":
+        return {}
+    return dict(SURFEL_DEFAULTS) if not mesh.has_uvs or mesh.n_charts > 1 else {}
+
 
 def feature_names(features) -> list[str]:
     """A list of valid feature names from a name, a comma-separated string, a list, or "all"."""
