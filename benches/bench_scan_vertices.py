@@ -6,7 +6,9 @@ time of each method, from a loaded mesh with a cached automatic atlas.
         [--radii 1 2 4 8] [--methods default vertices reference] [--probe 1000] [--repeats 3]
         [--resolution 512] [--truth facets|smooth]
 
-Methods: `default` is `uvfeat.compute` with its defaults; `vertices` is `uvfeat.compute` with
+Methods: `default` is `uvfeat.compute` with its defaults (on these many-chart atlases, the values at
+the vertices from the surfels); `pattern` the pattern read from its 512² maps, the default of a
+single chart (`quadrature="pattern"`, 1024² buffers); `vertices` is `uvfeat.compute` with
 `quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
 maps; `vertices/smooth` on the smooth surface, `vertices@1024` with 1024² buffers instead of
 `--resolution`); `reference` is `uvfeat.reference.compute`. Each
@@ -57,6 +59,8 @@ def method(name: str, resolution: int):
         return lambda mesh, radius: uvfeat.reference.compute(mesh, FEATURES, radius=radius)
     if name == "default":
         return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius)
+    if name == "pattern":
+        return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius, quadrature="pattern")
     name, _, size = name.partition("@")
     resolution = int(size) if size else resolution
     surface = name.partition("/")[2] or "facets"
