@@ -71,6 +71,31 @@ def test_compute_command_writes_per_vertex_files_maps_and_summary(tmp_path):
     assert main(["compute", str(path), "--radius", "-1", "--out", str(out)]) == 2
 
 
+def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp_path):
+    # An icosphere without UVs gets uvfeat's atlas (many charts): its per-vertex files hold
+    # `uvfeat.compute`'s values at the vertices, its maps the pattern's; --quadrature pattern reads
+    # the per-vertex values from the maps.
+    import numpy as np
+
+    import uvfeat
+
+    path = tmp_path / "ico.obj"
+    trimesh.creation.icosphere(3).export(path)
+    options = ["--feature", "mean_curvature", "--radius", "10%", "--compute-resolution", "64", "--samples", "64"]
+    assert main(["compute", str(path), *options, "--out", str(tmp_path / "default")]) == 0
+    assert main(["compute", str(path), *options, "--quadrature", "pattern", "--out", str(tmp_path / "pattern")]) == 0
+    mesh = uvfeat.load(str(path))
+    assert mesh.n_charts > 1
+    expected = uvfeat.compute(mesh, "mean_curvature", "10%")["mean_curvature"]
+    written = np.load(tmp_path / "default" / "per_vertex_r10pct.npz")["mean_curvature"]
+    np.testing.assert_array_equal(written, expected)
+    from_maps = np.load(tmp_path / "pattern" / "per_vertex_r10pct.npz")["mean_curvature"]
+    assert not np.array_equal(from_maps, expected) and abs(np.median(from_maps) - 1.0) < 0.1
+    for kind in ("default", "pattern"):
+        np.testing.assert_array_equal(np.load(tmp_path / kind / "mean_curvature_r10pct.npy"),
+                                      np.load(tmp_path / "pattern" / "mean_curvature_r10pct.npy"))
+
+
 def test_compute_command_leaves_no_import_thread_behind(tmp_path, capsys, monkeypatch):
     """matplotlib is imported on a thread while the features run; a thread left importing could
     hang a process forked later (batch workers), so the command joins it, even when it fails

@@ -32,7 +32,7 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     """
     source = mesh_source(mesh)
     mesh = source.mesh
-    surfels = per_vertex_defaults(mesh, options, paper_mode)
+    surfels = per_vertex_defaults(mesh, features, options, paper_mode)
     if not mesh.has_uvs:
         # Packed for the atlas resolution `load` unwraps at, so that both share the cached unwrap.
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)

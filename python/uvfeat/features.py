@@ -254,7 +254,7 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
     :func:`compute_maps`, read with ``query``. An atlas of more than one chart takes the surfels
     unless ``options`` say otherwise (:func:`~uvfeat.options.per_vertex_defaults`)."""
-    opts = resolve_options({**per_vertex_defaults(atlas.mesh, options, paper_mode), **options}, paper_mode)
+    opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, options, paper_mode), **options}, paper_mode)
     own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))

@@ -45,14 +45,23 @@ SURFEL_RESOLUTION = 512
 ATLAS_RESOLUTION = 1024
 
 
-def per_vertex_defaults(mesh, options: dict, paper_mode: bool) -> dict:
-    """:data:`SURFEL_DEFAULTS` where they are the default of ``mesh``'s per-vertex values: its atlas
-    has more than one chart, or it has no UVs (so uvfeat's atlas will cut it), and the call names
-    neither the quadrature, another method than the integral estimators (which the sums serve) nor
-    the paper's choices; otherwise nothing."""
-    if paper_mode or "quadrature" in options or options.get("method", DEFAULT_OPTIONS["method"]) != "integral":
+def per_vertex_defaults(mesh, features, options: dict, paper_mode: bool) -> dict:
+    """:data:`SURFEL_DEFAULTS` where they are the default of ``mesh``'s per-vertex values of
+    ``features``: its atlas has more than one chart, or it has no UVs (so uvfeat's atlas will cut
+    it), the call names neither the quadrature nor the paper's choices, its method is the integral
+    estimators' (which the sums serve, ``evaluation::integration``) and the core accepts its
+    options with the surfels (not adaptive sampling, standard errors or the geodesic methods);
+    otherwise nothing, and invalid options are left for the computation to name."""
+    if paper_mode or "quadrature" in options or (mesh.has_uvs and mesh.n_charts == 1):
         return {}
-    return dict(SURFEL_DEFAULTS) if not mesh.has_uvs or mesh.n_charts > 1 else {}
+    candidate = {**DEFAULT_OPTIONS, **options, **SURFEL_DEFAULTS}
+    if candidate["method"] != "integral":
+        return {}
+    try:
+        _core.compute_settings(feature_names(features), 1.0, core_options(candidate))
+    except (InvalidParameterError, TypeError, ValueError):
+        return {}
+    return dict(SURFEL_DEFAULTS)
 
 
 def feature_names(features) -> list[str]:

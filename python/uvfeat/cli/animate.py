@@ -11,7 +11,7 @@ import numpy as np
 from .._core import __version__
 from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
-from ..options import ARGUMENT_DEFAULTS
+from ..options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS
 from ..pictures.surface_plot import VIEWS
 from ..unwrap import UV_POLICIES
 from ..files.writers import write_json
@@ -51,9 +51,11 @@ def run(args) -> int:
     out, started = console(), time.perf_counter()
     if "," in args.radius:
         raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
+    # Every frame's maps: the per-vertex default of many charts does not apply.
+    quadrature = args.quadrature or DEFAULT_OPTIONS["quadrature"]
     options = dict(frames=args.frames, fps=args.fps, animation=args.animation, resolution=args.resolution, uv=args.uv,
                    samples=args.samples, compute_resolution=args.compute_resolution, seed=args.seed,
-                   method=args.method, sampling=args.sampling, quadrature=args.quadrature, surface=args.surface)
+                   method=args.method, sampling=args.sampling, quadrature=quadrature, surface=args.surface)
     frames, notes = open_animation(args.mesh, args.feature, args.radius, **options)
     notes += frames.atlas.warnings()
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
@@ -80,7 +82,7 @@ def run(args) -> int:
         "uvfeat": __version__, "mesh": frames.mesh.name, "animation": frames.animation_name, "frames": total,
         "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": args.samples,
                      "resolution": args.resolution, "compute_resolution": args.compute_resolution, "seed": args.seed,
-                     "method": args.method, "sampling": args.sampling, "quadrature": args.quadrature,
+                     "method": args.method, "sampling": args.sampling, "quadrature": quadrature,
                      "surface": args.surface},
         "colour_ranges": ranges, "warnings": notes, "diagnostics": frames.atlas.diagnostics,
         "timings": {"once_s": frames.atlas.timings, "mean_per_frame_ms": mean_ms, "per_frame": per_frame,

@@ -106,10 +106,11 @@ def add_feature_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--sampling", choices=CHOICES["sampling"], default=DEFAULT_OPTIONS["sampling"],
                         help="sampler: one lattice shared by a tile of texels, per-texel samples (fast), or the exact "
                         "path both are checked against (default %(default)s)")
-    parser.add_argument("--quadrature", choices=CHOICES["quadrature"], default=DEFAULT_OPTIONS["quadrature"],
+    parser.add_argument("--quadrature", choices=CHOICES["quadrature"], default=None,
                         help="how a neighbourhood is summed: the paper's sample pattern over a parametric disk, or "
-                        "the atlas's surfels, each piece of surface counted once (accurate on scans at large radii, "
-                        "slower; docs/USAGE.md; default %(default)s)")
+                        "the atlas's surfels, each piece of surface counted once (docs/USAGE.md; default: the "
+                        "pattern, except the per-vertex values of an atlas of more than one chart, which sum the "
+                        "surfels at the vertices)")
     parser.add_argument("--surface", choices=CHOICES["surface"], default=DEFAULT_OPTIONS["surface"],
                         help="with --quadrature surfels: the smooth surface through the vertex normals, or the "
                         "mesh's flat facets as the object-space reference measures them (default %(default)s)")

@@ -14,8 +14,8 @@ from .._core import __version__
 from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from ..notes import recorded_notes
-from ..options import (ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query, check_resolution, feature_names,
-                       parse_radius)
+from ..options import (ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, PAPER_OPTIONS, SURFEL_RESOLUTION, check_query,
+                       check_resolution, feature_names, parse_radius, per_vertex_defaults)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -50,7 +50,9 @@ class FeatureJob:
     query: str = DEFAULT_OPTIONS["query"]
     method: str = DEFAULT_OPTIONS["method"]
     sampling: str = DEFAULT_OPTIONS["sampling"]
-    quadrature: str = DEFAULT_OPTIONS["quadrature"]
+    #: None: the pattern's maps, and per-vertex values by the default of the mesh's atlas
+    #: (:func:`~uvfeat.options.per_vertex_defaults`), as ``uvfeat.compute``.
+    quadrature: str | None = None
     surface: str = DEFAULT_OPTIONS["surface"]
     standard_error: bool = False
     directions: str | None = None
@@ -67,7 +69,9 @@ class FeatureJob:
         options = {
             "samples": self.samples, "compute_resolution": self.compute_resolution,
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
-            "quadrature": self.quadrature, "surface": self.surface, "standard_error": self.standard_error}
+            "surface": self.surface, "standard_error": self.standard_error}
+        if self.quadrature is not None:
+            options["quadrature"] = self.quadrature
         if self.paper_mode:
             options = {**PAPER_OPTIONS, **options}
         # The core checks the settings with each radius's number (a length, or a percentage of a
@@ -102,7 +106,20 @@ class FeatureJob:
         return {"samples": self.samples, "compute_resolution": self.compute_resolution, "adaptive": self.adaptive,
                 "seed": self.seed, "paper_mode": self.paper_mode, "query": self.query,
                 "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling,
-                "quadrature": self.quadrature, "surface": self.surface}
+                "quadrature": self.quadrature or DEFAULT_OPTIONS["quadrature"], "surface": self.surface}
+
+    def vertex_options(self, mesh) -> dict | None:
+        """The options of ``Atlas.per_vertex`` where the per-vertex values are not read from the
+        maps (the surfel sums at the vertices, ``uvfeat.compute``'s default on an atlas of more
+        than one chart); None where they are."""
+        named = {} if self.quadrature is None else {"quadrature": self.quadrature}
+        named |= {"method": self.method, "standard_error": self.standard_error, "adaptive": self.adaptive}
+        defaults = per_vertex_defaults(mesh, self.features, named, self.paper_mode)
+        if not defaults:
+            return None
+        options = {**self.compute_options(), **defaults}
+        del options["query"]
+        return options
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
@@ -131,15 +148,23 @@ class RadiusMaps:
     per_vertex_s: float
 
 
-def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True: None):
-    """The job's features on ``atlas``, one radius after the other (``advance`` reports each)."""
+def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True: None, at_vertices=None):
+    """The job's features on ``atlas``, one radius after the other (``advance`` reports each); the
+    per-vertex values read from the maps, or with ``at_vertices`` (an atlas and the options of
+    :meth:`FeatureJob.vertex_options`) evaluated at the vertices on that atlas."""
     for radius in job.radii:
         advance(f"features at r = {radius}", done=False)
         with recorded_notes() as notes:
             maps = atlas.compute(list(job.features), radius, **job.compute_options())
         advance(f"per-vertex values at r = {radius}")
         started = time.perf_counter()
-        per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+        if at_vertices is None:
+            per_vertex = {name: m.per_vertex() for name, m in maps.items()}
+        else:
+            vertex_atlas, options = at_vertices
+            with recorded_notes() as vertex_notes:
+                per_vertex = vertex_atlas.per_vertex(list(job.features), radius, **options)
+            notes += [note for note in vertex_notes if note not in notes]
         yield RadiusMaps(radius, maps, per_vertex, notes, time.perf_counter() - started)
 
 
@@ -164,9 +189,13 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     summary["diagnostics"] = atlas.diagnostics
     summary["warnings"] += atlas.warnings()
     timings = dict(atlas.timings)
+    vertex_options = job.vertex_options(mesh)
+    # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
+    at_vertices = None if vertex_options is None else (
+        Atlas(mesh, resolution=SURFEL_RESOLUTION) if job.resolution != SURFEL_RESOLUTION else atlas, vertex_options)
     advance("buffers ready")
     on_mesh: dict[str, list] = {name: [] for name in job.features}
-    for computed in computed_radii(atlas, job, advance):
+    for computed in computed_radii(atlas, job, advance, at_vertices):
         radius, maps, per_vertex = computed.radius, computed.maps, computed.per_vertex
         summary["warnings"] += computed.notes
         first = next(iter(maps.values()))
