@@ -117,9 +117,7 @@ class FeatureJob:
         defaults = per_vertex_defaults(mesh, self.features, named, self.paper_mode)
         if not defaults:
             return None
-        options = {**self.compute_options(), **defaults}
-        del options["query"]
-        return options
+        return {**self.compute_options(), **defaults}
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
