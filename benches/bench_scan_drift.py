@@ -2,13 +2,16 @@
 same surface refined by midpoint subdivision until it converges), as the radius grows.
 
     .venv/bin/python benches/bench_scan_drift.py [--meshes armadillo.obj stanford-bunny.obj dragon.obj]
-        [--radii 1 3 6] [--probe 2000] [--quadratures pattern surfels surfels/facets] [--cost-radii 1 2 4 8 16]
+        [--radii 1 3 6] [--probe 2000] [--quadratures default pattern surfels surfels/facets]
+        [--cost-radii 1 2 4 8 16]
 
 Prints two Markdown tables:
 
 - accuracy: %AE (range-normalised) and bias (mean signed error over mean |truth|) of H and K at
-  `--probe` random vertices (direct query), for the coarse reference and each quadrature
-  (`surfels/facets` is `quadrature="surfels", surface="facets"`), with CPU seconds;
+  `--probe` random vertices, for the coarse reference, `uvfeat.compute`'s defaults (`default`:
+  on these many-chart atlases the values at the vertices from the surfels, 512² buffers) and each
+  quadrature's maps read with the direct query (`surfels/facets` is `quadrature="surfels",
+  surface="facets"`), with CPU seconds;
 - cost: wall and CPU seconds of the 512² feature maps (H + K) of the first mesh, for the default
   pattern and the surfels at `--cost-radii`, measured one after the other on the same atlas.
 
@@ -67,8 +70,11 @@ def accuracy(folder: pathlib.Path, args) -> list[tuple[str, uvfeat.Atlas]]:
                    cell(coarse, truth)]
             for quadrature in args.quadratures:
                 started = time.process_time()
-                maps = atlas.compute(list(FEATURES), radius, query="direct", **options(quadrature))
-                values = {f: maps[f].per_vertex()[probe] for f in FEATURES}
+                if quadrature == "default":
+                    values = {f: v[probe] for f, v in uvfeat.compute(mesh, list(FEATURES), radius).items()}
+                else:
+                    maps = atlas.compute(list(FEATURES), radius, query="direct", **options(quadrature))
+                    values = {f: maps[f].per_vertex()[probe] for f in FEATURES}
                 row.append(cell(values, truth) + f" ({time.process_time() - started:.0f})")
             print("| " + " | ".join(row) + " |", flush=True)
     return atlases
@@ -94,7 +100,7 @@ def main() -> None:
     parser.add_argument("--meshes", nargs="+", default=["armadillo.obj", "stanford-bunny.obj", "dragon.obj"])
     parser.add_argument("--radii", nargs="*", type=float, default=[1.0, 3.0, 6.0])
     parser.add_argument("--probe", type=int, default=2000, help="vertices compared (random, seed 0)")
-    parser.add_argument("--quadratures", nargs="*", default=["pattern", "surfels", "surfels/facets"])
+    parser.add_argument("--quadratures", nargs="*", default=["default", "pattern", "surfels", "surfels/facets"])
     parser.add_argument("--cost-radii", nargs="*", type=float, default=[1.0, 2.0, 4.0, 8.0, 16.0])
     args = parser.parse_args()
     folder = pathlib.Path(os.environ.get("UVFEAT_SHARED_MESHES", pathlib.Path(__file__).parents[1].parent / "shared" / "meshes"))
