@@ -66,11 +66,13 @@ def test_paper_mode_switches_every_choice():
     settings = maps["mean_curvature"].settings
     for name, value in uvfeat.options.PAPER_OPTIONS.items():
         assert settings[name] == value, name
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         per_vertex = uvfeat.compute(mesh, "mean_curvature", radius=0.15, compute_resolution=128,
                                     paper_mode=True)["mean_curvature"]
     assert np.isfinite(per_vertex).all()
+    # Said once, by the maps the per-vertex values are read from.
+    assert sum("paper_mode" in str(w.message) for w in caught) == 1, [str(w.message) for w in caught]
 
 
 @pytest.mark.parametrize("name, value", [("relocation", "teleport"), ("lookup", "nearest"), ("geodesic", "heat")])

@@ -145,6 +145,10 @@ def test_bad_per_vertex_radii_are_clear_errors():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert atlas.per_vertex("mean_curvature", np.full(n, 0.3), **SURFELS)["mean_curvature"].shape == (n,)
+    radii[7] = 2 * torus().bounding_box_diagonal
+    for options in ({}, SURFELS):
+        with pytest.raises(uvfeat.InvalidParameterError, match="larger than the mesh"):
+            atlas.per_vertex("mean_curvature", radii, **options)
 
 
 def test_the_per_vertex_radius_example_runs_as_written(capsys):

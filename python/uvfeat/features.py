@@ -18,7 +18,8 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
-from .options import core_options, feature_names, resolve_options, resolve_radius, per_vertex_defaults
+from .options import (core_options, feature_names, per_vertex_defaults, resolve_options, resolve_radius,
+                      warn_paper_mode)
 from .vertex_radii import LevelReader, levels, per_vertex_radii, texel_radii
 
 #: How the notes about flagged vertices name the scale when each vertex has its own radius.
@@ -254,7 +255,9 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
     :func:`compute_maps`, read with ``query``. An atlas of more than one chart takes the surfels
     unless ``options`` say otherwise (:func:`~uvfeat.options.per_vertex_defaults`)."""
-    opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, options, paper_mode), **options}, paper_mode)
+    # The maps say it when they are computed instead.
+    opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, options, paper_mode), **options}, paper_mode,
+                           warn=False)
     own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
@@ -265,13 +268,15 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     # Per call: the settings (at the largest of the vertices' own radii, which the core reads
     # instead), the vertices' radii, a label.
     if own_radii is not None:
-        calls = [(settings(float(own_radii.max())), own_radii, OWN_RADII)]
+        calls = [(settings(resolve_radius(float(own_radii.max()), diagonal)), own_radii, OWN_RADII)]
     else:
         calls = [(settings(resolve_radius(r, diagonal)), None, _scale(r)) for r in (radius if stack else [radius])]
     if not _core.sums_apply(atlas._core, calls[0][0]):
         maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
         return {name: feature.per_vertex() for name, feature in maps.items()}
+    if paper_mode:
+        warn_paper_mode(stacklevel=4)
     per_radius, texts = [], []
     for call_settings, radii, label in calls:
         values, _, border = _core.vertex_feature_values(atlas._core, call_settings, radii)

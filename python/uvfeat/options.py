@@ -101,19 +101,26 @@ def resolve_radius(radius, diagonal: float) -> float:
     return value
 
 
-def resolve_options(options: dict, paper_mode: bool) -> dict:
+def resolve_options(options: dict, paper_mode: bool, *, warn: bool = True) -> dict:
     """Defaults, then the paper's choices, then the caller's options. The core checks their names,
-    kinds and ranges (``query``, which picks how the maps are read, is checked here)."""
+    kinds and ranges (``query``, which picks how the maps are read, is checked here). ``warn``:
+    say that the paper's choices are less accurate (:func:`warn_paper_mode`), once per call."""
     resolved = dict(DEFAULT_OPTIONS)
     if paper_mode:
         resolved.update(PAPER_OPTIONS)
-        warnings.warn("paper_mode: the paper's choices (margin 1, per-chart repetition with one jump, bilinear "
-                      "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
-                      "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=3)
+        if warn:
+            warn_paper_mode(stacklevel=4)
     resolved.update(options)
     _core.check_options(core_options(resolved))
     check_query(resolved["query"])
     return resolved
+
+
+def warn_paper_mode(stacklevel: int) -> None:
+    """The warning of a computation with ``paper_mode``."""
+    warnings.warn("paper_mode: the paper's choices (margin 1, per-chart repetition with one jump, bilinear "
+                  "lookup, chord-sum geodesic-area K, uniform volume weighting); they are less accurate than "
+                  "the defaults and meant for reproducing its numbers", UserWarning, stacklevel=stacklevel)
 
 
 def core_options(options: dict) -> dict:

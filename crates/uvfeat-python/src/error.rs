@@ -68,12 +68,16 @@ pub fn guarded<T: Send>(py: Python<'_>, f: impl FnOnce() -> Result<T, UvfeatErro
             receiver = back;
             match received {
                 Ok(outcome) => break Ok(outcome),
-                Err(RecvTimeoutError::Timeout) => {
-                    if let (None, Err(error)) = (&interrupted, py.check_signals()) {
+                // Handlers run until the first one raises; a later signal stays pending for Python,
+                // which handles it once this call has returned (running it here would drop its
+                // exception: a second Ctrl-C, or a handler's SystemExit).
+                Err(RecvTimeoutError::Timeout) if interrupted.is_none() => {
+                    if let Err(error) = py.check_signals() {
                         interrupted = Some(error);
                         cancel::request();
                     }
                 }
+                Err(RecvTimeoutError::Timeout) => {}
                 // The thread sends before it ends, panic or not; nothing else drops the sender.
                 Err(RecvTimeoutError::Disconnected) => unreachable!("the computing thread ended without a result"),
             }
