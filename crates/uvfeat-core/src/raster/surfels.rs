@@ -261,7 +261,14 @@ impl Surfels {
     pub fn build(topology: &Topology, frame: &Frame, width: usize, surface: Surface) -> Self {
         let smooth = surface == Surface::Smooth;
         let sums = texel_sums(topology, frame, width, smooth);
+        // A stopped build is dropped (`Atlas::surfels`): no step after a stop runs on.
+        if cancel::requested() {
+            return Self::default();
+        }
         let (seams, borders) = boundary_points(topology, width);
+        if cancel::requested() {
+            return Self::default();
+        }
         let mut levels = vec![SurfelLevel::finest(width, &sums, &seams, &borders)];
         drop(sums);
         while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL && !cancel::requested()) {
