@@ -106,7 +106,7 @@ impl PyFeatureMaps {
     /// (n_vertices, 2, 3) principal directions of the fit, evaluated at every vertex.
     fn per_vertex_directions<'py>(&self, py: Python<'py>, atlas: &PyAtlas) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
         let (settings, core) = (&self.settings, atlas.core());
-        let directions = guarded(py, || Ok(per_vertex_directions(core, settings)))?;
+        let directions = guarded(py, || per_vertex_directions(core, settings))?;
         let n = directions.len();
         to_numpy(py, directions.into_iter().flatten().flatten().collect(), &[n, 2, 3])
     }
@@ -146,7 +146,7 @@ impl PyFeatureMaps {
     ) -> PyResult<Vec<Bound<'py, PyArrayDyn<f32>>>> {
         let query: VertexQuery = named(query)?;
         let (maps, settings, core) = (&self.inner, &self.settings, atlas.core());
-        let values = guarded(py, || Ok(per_vertex(core, maps, settings, query)))?;
+        let values = guarded(py, || per_vertex(core, maps, settings, query))?;
         values
             .into_iter()
             .map(|v| {
@@ -229,7 +229,7 @@ pub fn neighbourhood_tile_arrays<'py>(
     let (core, s) = (atlas.core(), &settings.inner);
     let w = s.resolution;
     let range = start.min(w * w)..stop.min(w * w);
-    let tile = guarded(py, || Ok(neighbourhood_tile(core, s, range)))?;
+    let tile = guarded(py, || neighbourhood_tile(core, s, range))?;
     let (t, n) = (tile.texels.len(), tile.samples);
     Ok((
         to_numpy(py, tile.texels, &[t])?,

@@ -2,6 +2,8 @@
 //! operators `F(p, S(p))` (DESIGN.md §2.9). Tiles bound the memory: a tile holds `texels x N` samples.
 
 use crate::atlas::Atlas;
+use crate::cancel;
+use crate::error::Result;
 use crate::evaluation::{integration, prepare};
 use crate::sampling::{
     centre_at, disk_pattern, gather_covering, gather_surfels, surfel_centre, Placement, Sample, SamplerSettings,
@@ -35,11 +37,14 @@ pub struct NeighbourhoodTile {
 type TexelSamples = (u32, [f64; 3], [f64; 3], Vec<Sample>);
 
 /// Gathers the neighbourhoods of the texels with index in `texels` (of the `W_c`² texture).
+///
+/// # Errors
+/// [`UvfeatError::Cancelled`](crate::error::UvfeatError::Cancelled) when [`cancel`] stopped the call.
 pub fn neighbourhood_tile(
     atlas: &Atlas,
     settings: &ComputeSettings,
     texels: std::ops::Range<usize>,
-) -> NeighbourhoodTile {
+) -> Result<NeighbourhoodTile> {
     let w = settings.resolution;
     let n = settings.samples;
     let pattern = disk_pattern(n, settings.seed, 0);
@@ -48,6 +53,9 @@ pub fn neighbourhood_tile(
     let per_texel: Vec<TexelSamples> = texels
         .into_par_iter()
         .filter_map(|t| {
+            if cancel::requested() {
+                return None;
+            }
             let (i, j) = (t % w, t / w);
             let uv = DVec2::new((i as f64 + 0.5) / w as f64, (j as f64 + 0.5) / w as f64);
             let mut centre = centre_at(atlas, uv, settings.lookup)?;
@@ -62,6 +70,7 @@ pub fn neighbourhood_tile(
             Some((t as u32, centre.position.to_array(), centre.normal.to_array(), samples))
         })
         .collect();
+    cancel::check()?;
     // Surfel neighbourhoods hold as many samples as the ball has surfels.
     let n = per_texel.iter().map(|(.., samples)| samples.len()).max().unwrap_or(0).max(n);
     let count = per_texel.len();
@@ -87,5 +96,5 @@ pub fn neighbourhood_tile(
             tile.valid[at] = true;
         }
     }
-    tile
+    Ok(tile)
 }

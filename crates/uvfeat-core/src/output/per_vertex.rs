@@ -6,6 +6,7 @@ use super::feature_map::FeatureMaps;
 use super::vertex_values::{sums_apply, vertex_values};
 use crate::atlas::Atlas;
 use crate::cancel;
+use crate::error::Result;
 use crate::evaluation::{evaluate_point, prepare, Patterns};
 use crate::features::CurvatureMethod;
 use crate::sampling::Placement;
@@ -96,11 +97,18 @@ impl CornerMeans {
 /// Per-vertex values of every map, one `Vec` per feature with one value per *input* vertex
 /// (vertices the file split at seams get the value of their welded vertex). The direct query of
 /// the surfels' integral estimators sums their moments at the vertices ([`vertex_values`]).
-pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings, query: VertexQuery) -> Vec<Vec<f32>> {
+///
+/// # Errors
+/// [`UvfeatError::Cancelled`](crate::error::UvfeatError::Cancelled) when [`cancel`] stopped the
+/// call; [`vertex_values`]' errors.
+pub fn per_vertex(
+    atlas: &Atlas,
+    maps: &FeatureMaps,
+    settings: &ComputeSettings,
+    query: VertexQuery,
+) -> Result<Vec<Vec<f32>>> {
     if query == VertexQuery::Direct && sums_apply(atlas, settings) {
-        if let Ok(at_vertices) = vertex_values(atlas, settings) {
-            return at_vertices.values;
-        }
+        return Ok(vertex_values(atlas, settings)?.values);
     }
     let corners = VertexCorners::new(atlas);
     let patterns = Patterns::new(settings);
@@ -140,8 +148,9 @@ pub fn per_vertex(atlas: &Atlas, maps: &FeatureMaps, settings: &ComputeSettings,
             means.write(out);
         },
     );
+    cancel::check()?;
     let ids = &atlas.topology.vertex_ids;
-    (0..n_features).map(|f| ids.iter().map(|&g| geometric[g as usize * n_features + f]).collect()).collect()
+    Ok((0..n_features).map(|f| ids.iter().map(|&g| geometric[g as usize * n_features + f]).collect()).collect())
 }
 
 /// Every atlas corner's UV and geometric vertex and, per feature, its chart-masked bilinear
@@ -171,7 +180,10 @@ pub fn per_corner(atlas: &Atlas, maps: &FeatureMaps) -> (Vec<DVec2>, Vec<u32>, V
 /// Principal directions `[d1, d2]` of the quadric fit at every *input* vertex, evaluated directly
 /// at one corner UV of the vertex (a line field has no sign, so texels cannot be averaged
 /// bilinearly like scalar maps); NaN where the fit failed.
-pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[[f32; 3]; 2]> {
+///
+/// # Errors
+/// [`UvfeatError::Cancelled`](crate::error::UvfeatError::Cancelled) when [`cancel`] stopped the call.
+pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Result<Vec<[[f32; 3]; 2]>> {
     let settings = ComputeSettings { method: CurvatureMethod::Fit, standard_errors: false, ..settings.clone() };
     let patterns = Patterns::new(&settings);
     prepare(atlas, &settings);
@@ -179,6 +191,9 @@ pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[
     let geometric: Vec<[[f32; 3]; 2]> = (0..corners.n_vertices())
         .into_par_iter()
         .map_init(Vec::new, |scratch, vertex| {
+            if cancel::requested() {
+                return [[f32::NAN; 3]; 2];
+            }
             // The first corner where the fit succeeds: a corner UV on a chart's edge may fall on
             // a gutter texel of the raster, which has no centre.
             let placement = Placement::of_vertex(vertex as u32, settings.seed);
@@ -189,5 +204,6 @@ pub fn per_vertex_directions(atlas: &Atlas, settings: &ComputeSettings) -> Vec<[
                 .unwrap_or([[f32::NAN; 3]; 2])
         })
         .collect();
-    atlas.topology.vertex_ids.iter().map(|&g| geometric[g as usize]).collect()
+    cancel::check()?;
+    Ok(atlas.topology.vertex_ids.iter().map(|&g| geometric[g as usize]).collect())
 }

@@ -189,7 +189,7 @@ fn per_vertex_directions_of_the_torus_match_the_analytic_ones() {
     let shape = torus(major, minor, 192, 96);
     let atlas = atlas(&shape, 512);
     let settings = ComputeSettings::new(vec![Feature::MeanCurvature], 0.15);
-    let directions = per_vertex_directions(&atlas, &settings);
+    let directions = per_vertex_directions(&atlas, &settings).unwrap();
     assert_eq!(directions.len(), shape.positions.len());
     let truth = torus_truth(major, minor);
     let (mut e1, mut e2) = (Vec::new(), Vec::new());

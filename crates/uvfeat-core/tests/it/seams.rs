@@ -211,7 +211,7 @@ fn per_vertex_values_are_the_mean_of_the_corner_lookups() {
     let maps = FeatureMaps::compute(&atlas, &settings).expect("valid settings");
     let (uvs, vertex, corners) = per_corner(&atlas, &maps);
     assert_eq!((uvs.len(), vertex.len()), (atlas.topology.n_corners, atlas.topology.n_corners));
-    let values = per_vertex(&atlas, &maps, &settings, VertexQuery::Texture);
+    let values = per_vertex(&atlas, &maps, &settings, VertexQuery::Texture).unwrap();
     let n = atlas.topology.n_geometric();
     let (mut sums, mut counts) = (vec![0.0f64; n], vec![0usize; n]);
     for (&g, &v) in vertex.iter().zip(&corners[0]) {

@@ -78,7 +78,7 @@ fn values_at_the_vertices_agree_with_the_flat_surfels_and_need_them() {
     }
     // The direct query of surfel maps is these values.
     let maps = FeatureMaps::compute(&atlas, &s).unwrap();
-    assert_eq!(per_vertex(&atlas, &maps, &s, VertexQuery::Direct), at_vertices);
+    assert_eq!(per_vertex(&atlas, &maps, &s, VertexQuery::Direct).unwrap(), at_vertices);
     s.quadrature = Quadrature::Pattern;
     let err = vertex_values(&atlas, &s).unwrap_err().to_string();
     assert!(err.contains("surfels"), "{err}");
