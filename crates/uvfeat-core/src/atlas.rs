@@ -101,6 +101,10 @@ impl Atlas {
         if let Some(surfels) = cell.get() {
             return surfels;
         }
+        // Asked per point: once stopped, no point starts a build of its own.
+        if cancel::requested() {
+            return &NONE;
+        }
         let built = Surfels::build(&self.topology, &self.frame, self.resolution(), surface);
         if cancel::requested() {
             return &NONE;
