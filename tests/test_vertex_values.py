@@ -90,10 +90,17 @@ def test_many_charts_default_to_the_values_at_the_vertices_and_one_chart_to_the_
     for name in HK:
         np.testing.assert_array_equal(default[name], sums[name])
         np.testing.assert_array_equal(single[name], maps[name].per_vertex())
-    # Naming the quadrature, the fit or the paper's choices keeps the maps.
-    pattern = uvfeat.compute(many, "mean_curvature", "3%", compute_resolution=64, quadrature="pattern")
-    maps = uvfeat.Atlas(many, resolution=1024).compute("mean_curvature", "3%", compute_resolution=64)
-    np.testing.assert_array_equal(pattern["mean_curvature"], maps["mean_curvature"].per_vertex())
+    # Naming the quadrature or the maps' query, or asking for what the sums do not serve (the fit,
+    # adaptive sampling, standard errors), keeps the maps, on 1024² buffers.
+    atlas = uvfeat.Atlas(many, resolution=1024)
+    for options in ({"quadrature": "pattern"}, {"query": "direct"}, {"method": "fit"}, {"adaptive": True},
+                    {"standard_error": True}):
+        read = uvfeat.compute(many, "mean_curvature", "3%", compute_resolution=32, samples=32, **options)
+        maps = atlas.compute("mean_curvature", "3%", compute_resolution=32, samples=32, **options)
+        query = options.get("query", "texture")
+        np.testing.assert_array_equal(read["mean_curvature"], maps["mean_curvature"].per_vertex(query), str(options))
+        adaptive = atlas.per_vertex("mean_curvature", "3%", compute_resolution=32, samples=32, **options)
+        np.testing.assert_array_equal(adaptive["mean_curvature"], read["mean_curvature"], str(options))
 
 
 @pytest.mark.parametrize("radius", ["2%", "6%"])

@@ -6,7 +6,7 @@ import numpy as np
 
 from .atlas import Atlas
 from .interop import mesh_source
-from .options import ATLAS_RESOLUTION, SURFEL_RESOLUTION, per_vertex_defaults
+from .options import ATLAS_RESOLUTION, SURFEL_RESOLUTION, sums_at_vertices
 
 
 def compute(mesh, features, radius, *, resolution: int | None = None, precision: str = "f32",
@@ -21,9 +21,12 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     evaluated at the vertices, with no maps. For several calls on the same mesh keep an Atlas.
 
     A mesh without UVs gets uvfeat's automatic atlas. On an atlas of more than one chart (that one,
-    or the mesh's own) each vertex is the centre of its own ball over the surfels
-    (``quadrature="surfels"``) at a ``resolution`` of 512, unless ``options`` name ``quadrature`` or
-    ``method`` (or ``paper_mode``); otherwise ``resolution`` defaults to 1024.
+    or the mesh's own) each vertex is the centre of its own ball over the surfels by default
+    (``quadrature="surfels"``; the pattern's options, ``samples``, ``sampling``, ``margin`` ..., do
+    not apply then), unless ``options`` name ``quadrature`` or ``query`` or ask for what the sums do
+    not serve (``method="fit"``, ``adaptive``, ``standard_error``, the geodesic methods,
+    ``paper_mode``): then the maps are read. ``resolution`` defaults to 512 where the values are the
+    surfel sums, 1024 otherwise.
 
     Returns
     -------
@@ -32,11 +35,11 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     """
     source = mesh_source(mesh)
     mesh = source.mesh
-    surfels = per_vertex_defaults(mesh, features, options, paper_mode)
     if not mesh.has_uvs:
         # Packed for the atlas resolution `load` unwraps at, so that both share the cached unwrap.
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)
     if resolution is None:
+        surfels = sums_at_vertices(mesh, features, options, paper_mode)
         resolution = SURFEL_RESOLUTION if surfels else ATLAS_RESOLUTION
     if paper_mode:
         precision = "f16"

@@ -255,8 +255,9 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
     :func:`compute_maps`, read with ``query``. An atlas of more than one chart takes the surfels
     unless ``options`` say otherwise (:func:`~uvfeat.options.per_vertex_defaults`)."""
+    named = {**options, "adaptive": adaptive}
     # The maps say it when they are computed instead.
-    opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, options, paper_mode), **options}, paper_mode,
+    opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, named, paper_mode), **options}, paper_mode,
                            warn=False)
     own_radii = per_vertex_radii(radius, atlas.mesh.n_vertices)
     names = feature_names(features)

@@ -38,7 +38,8 @@ PAPER_OPTIONS = _core.paper_options()
 #: centre of its own ball, summed over the surfels (DESIGN.md §1.9).
 SURFEL_DEFAULTS = {"quadrature": "surfels"}
 
-#: The atlas resolution ``uvfeat.compute`` takes for those defaults: the surfel grid's.
+#: The atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel sums:
+#: the surfel grid's (:func:`sums_at_vertices`).
 SURFEL_RESOLUTION = 512
 
 #: The atlas resolution ``uvfeat.compute`` takes otherwise.
@@ -48,11 +49,12 @@ ATLAS_RESOLUTION = 1024
 def per_vertex_defaults(mesh, features, options: dict, paper_mode: bool) -> dict:
     """:data:`SURFEL_DEFAULTS` where they are the default of ``mesh``'s per-vertex values of
     ``features``: its atlas has more than one chart, or it has no UVs (so uvfeat's atlas will cut
-    it), the call names neither the quadrature nor the paper's choices, its method is the integral
-    estimators' (which the sums serve, ``evaluation::integration``) and the core accepts its
-    options with the surfels (not adaptive sampling, standard errors or the geodesic methods);
-    otherwise nothing, and invalid options are left for the computation to name."""
-    if paper_mode or "quadrature" in options or (mesh.has_uvs and mesh.n_charts == 1):
+    it), the call names neither the quadrature, the maps' ``query`` nor the paper's choices, its
+    method is the integral estimators' (which the sums serve, ``evaluation::integration``) and the
+    core accepts its options with the surfels (not adaptive sampling, standard errors or the
+    geodesic methods); otherwise nothing, and invalid options are left for the computation to name.
+    ``options`` holds every option of the call, the named arguments (``adaptive``, ...) included."""
+    if paper_mode or "quadrature" in options or "query" in options or (mesh.has_uvs and mesh.n_charts == 1):
         return {}
     candidate = {**DEFAULT_OPTIONS, **options, **SURFEL_DEFAULTS}
     if candidate["method"] != "integral":
@@ -62,6 +64,14 @@ def per_vertex_defaults(mesh, features, options: dict, paper_mode: bool) -> dict
     except (InvalidParameterError, TypeError, ValueError):
         return {}
     return dict(SURFEL_DEFAULTS)
+
+
+def sums_at_vertices(mesh, features, options: dict, paper_mode: bool) -> bool:
+    """Whether ``mesh``'s per-vertex values with ``options`` are the surfel sums at the vertices:
+    by default (:func:`per_vertex_defaults`) or named (``quadrature="surfels"`` with the integral
+    estimators)."""
+    named = options.get("quadrature") == "surfels" and options.get("method", DEFAULT_OPTIONS["method"]) == "integral"
+    return named or bool(per_vertex_defaults(mesh, features, options, paper_mode))
 
 
 def feature_names(features) -> list[str]:

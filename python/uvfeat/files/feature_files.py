@@ -14,8 +14,9 @@ from .._core import __version__
 from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from ..notes import recorded_notes
-from ..options import (ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, PAPER_OPTIONS, SURFEL_RESOLUTION, check_query,
-                       check_resolution, feature_names, parse_radius, per_vertex_defaults)
+from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, SURFEL_RESOLUTION,
+                       check_query, check_resolution, feature_names, parse_radius, per_vertex_defaults,
+                       sums_at_vertices)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -42,7 +43,7 @@ class FeatureJob:
     features: tuple[str, ...]
     radii: tuple[str, ...]
     samples: int = ARGUMENT_DEFAULTS["samples"]
-    resolution: int = 1024
+    resolution: int = ATLAS_RESOLUTION
     compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"]
     adaptive: bool = False
     paper_mode: bool = False
@@ -50,8 +51,9 @@ class FeatureJob:
     query: str = DEFAULT_OPTIONS["query"]
     method: str = DEFAULT_OPTIONS["method"]
     sampling: str = DEFAULT_OPTIONS["sampling"]
-    #: None: the pattern's maps, and per-vertex values by the default of the mesh's atlas
-    #: (:func:`~uvfeat.options.per_vertex_defaults`), as ``uvfeat.compute``.
+    #: None: the pattern's maps, and the per-vertex files by the default of the mesh's atlas
+    #: (:func:`~uvfeat.options.per_vertex_defaults`), as ``uvfeat.compute`` (``uvfeat bake`` reads
+    #: its per-vertex values from the maps it bakes).
     quadrature: str | None = None
     surface: str = DEFAULT_OPTIONS["surface"]
     standard_error: bool = False
@@ -109,15 +111,19 @@ class FeatureJob:
                 "quadrature": self.quadrature or DEFAULT_OPTIONS["quadrature"], "surface": self.surface}
 
     def vertex_options(self, mesh) -> dict | None:
-        """The options of ``Atlas.per_vertex`` where the per-vertex values are not read from the
-        maps (the surfel sums at the vertices, ``uvfeat.compute``'s default on an atlas of more
-        than one chart); None where they are."""
+        """The options of ``Atlas.per_vertex`` where the per-vertex values are the surfel sums at
+        the vertices, as ``uvfeat.compute`` gives them (by default on an atlas of more than one
+        chart, or named with ``quadrature="surfels"``); None where they are read from the maps."""
         named = {} if self.quadrature is None else {"quadrature": self.quadrature}
         named |= {"method": self.method, "standard_error": self.standard_error, "adaptive": self.adaptive}
-        defaults = per_vertex_defaults(mesh, self.features, named, self.paper_mode)
-        if not defaults:
+        if not sums_at_vertices(mesh, self.features, named, self.paper_mode):
             return None
-        return {**self.compute_options(), **defaults}
+        return {**self.compute_options(), **per_vertex_defaults(mesh, self.features, named, self.paper_mode)}
+
+    def vertex_resolution(self) -> int:
+        """The atlas resolution of the sums at the vertices: the surfel grid's, as ``uvfeat.compute``,
+        unless ``resolution`` names another size than the default."""
+        return SURFEL_RESOLUTION if self.resolution == ATLAS_RESOLUTION else self.resolution
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
@@ -188,9 +194,14 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     summary["warnings"] += atlas.warnings()
     timings = dict(atlas.timings)
     vertex_options = job.vertex_options(mesh)
-    # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
-    at_vertices = None if vertex_options is None else (
-        Atlas(mesh, resolution=SURFEL_RESOLUTION) if job.resolution != SURFEL_RESOLUTION else atlas, vertex_options)
+    at_vertices = None
+    if vertex_options is not None:
+        # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
+        vertex_atlas = atlas
+        if job.vertex_resolution() != job.resolution:
+            vertex_atlas = Atlas(mesh, resolution=job.vertex_resolution())
+            timings["vertex_rasterisation_s"] = vertex_atlas.timings["rasterisation_s"]
+        at_vertices = (vertex_atlas, vertex_options)
     advance("buffers ready")
     on_mesh: dict[str, list] = {name: [] for name in job.features}
     for computed in computed_radii(atlas, job, advance, at_vertices):
