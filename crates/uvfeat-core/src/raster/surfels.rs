@@ -168,20 +168,43 @@ impl SurfelLevel {
         }
     }
 
-    /// Adjacency from pairs `(a, b)` (either order, repeats and `a == b` allowed).
+    /// Adjacency from pairs `(a, b)` (either order, repeats and `a == b` allowed), each list in
+    /// ascending order. Counted into place rather than sorted as one list: the finest level of
+    /// the 100K-face dragon at 512² has 346K pairs (22 ms sorted).
     fn set_adjacency(&mut self, pairs: Vec<(u32, u32)>) {
-        let mut both: Vec<(u32, u32)> =
-            pairs.into_iter().filter(|(a, b)| a != b).flat_map(|(a, b)| [(a, b), (b, a)]).collect();
-        both.par_sort_unstable();
-        both.dedup();
-        self.adjacent_first = vec![0; self.len() + 1];
-        for &(a, _) in &both {
-            self.adjacent_first[a as usize + 1] += 1;
+        let n = self.len();
+        let links = || pairs.iter().filter(|(a, b)| a != b).flat_map(|&(a, b)| [(a, b), (b, a)]);
+        let mut first = vec![0u32; n + 1];
+        for (a, _) in links() {
+            first[a as usize + 1] += 1;
         }
-        for s in 0..self.len() {
-            self.adjacent_first[s + 1] += self.adjacent_first[s];
+        for s in 0..n {
+            first[s + 1] += first[s];
         }
-        self.adjacent = both.into_iter().map(|(_, b)| b).collect();
+        let mut next = first.clone();
+        let mut adjacent = vec![0u32; first[n] as usize];
+        for (a, b) in links() {
+            adjacent[next[a as usize] as usize] = b;
+            next[a as usize] += 1;
+        }
+        // Each list sorted and its repeats dropped, compacted towards the front in place.
+        self.adjacent_first = Vec::with_capacity(n + 1);
+        self.adjacent_first.push(0);
+        let mut kept = 0;
+        for s in 0..n {
+            let list = &mut adjacent[first[s] as usize..first[s + 1] as usize];
+            list.sort_unstable();
+            for k in first[s] as usize..first[s + 1] as usize {
+                let t = adjacent[k];
+                if kept == self.adjacent_first[s] as usize || adjacent[kept - 1] != t {
+                    adjacent[kept] = t;
+                    kept += 1;
+                }
+            }
+            self.adjacent_first.push(kept as u32);
+        }
+        adjacent.truncate(kept);
+        self.adjacent = adjacent;
     }
 
     /// The next level up: in each 2 x 2 block of texels, the surfels of one chart joined by
