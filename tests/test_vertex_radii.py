@@ -51,11 +51,12 @@ def test_a_constant_array_gives_the_scalar_result(options):
 
 
 def test_each_vertex_takes_its_own_ball_with_the_surfel_sums():
-    # Two radii on alternate vertices: each vertex's value is the scalar radius's at it, exactly.
+    # Two radii on alternate vertices: each vertex's value is the scalar radius's at it, exactly
+    # (on one surfel grid: by default each call takes the grid of its smallest radius).
     radii = np.where(np.arange(torus().n_vertices) % 2 == 0, 0.2, 0.45)
-    mixed = uvfeat.compute(torus(), HK, radius=radii, **SURFELS)
+    mixed = uvfeat.compute(torus(), HK, radius=radii, resolution=512, **SURFELS)
     for r in (0.2, 0.45):
-        scalar = uvfeat.compute(torus(), HK, radius=r, **SURFELS)
+        scalar = uvfeat.compute(torus(), HK, radius=r, resolution=512, **SURFELS)
         rows = radii == r
         for name in HK:
             np.testing.assert_array_equal(mixed[name][rows], scalar[name][rows])

@@ -103,6 +103,22 @@ def test_many_charts_default_to_the_values_at_the_vertices_and_one_chart_to_the_
         np.testing.assert_array_equal(adaptive["mean_curvature"], read["mean_curvature"], str(options))
 
 
+def test_large_radii_take_a_coarser_surfel_grid_with_the_same_values():
+    # At 8 % of the diagonal a ball holds 256 surfels of a 256² grid, at 12 % of a 128² grid: the
+    # 512² grid would sum its coarser levels, and both agree within their quadrature (measured:
+    # H 0.010 / 0.021 %, K 0.003 / 0.007 % of the range).
+    mesh = bumpy_sphere()
+    atlas = uvfeat.Atlas(mesh, resolution=512)
+    assert uvfeat.options.surfel_resolution(mesh, ["8%", "2%"]) == 512
+    for radius, grid in (("8%", 256), ("12%", 128)):
+        assert uvfeat.options.surfel_resolution(mesh, radius) == grid
+        default = uvfeat.compute(mesh, HK, radius)
+        finest = atlas.per_vertex(HK, radius, quadrature="surfels")
+        for name in HK:
+            error = range_normalised_error(default[name], finest[name])
+            assert 0 < error < 0.002, (radius, name, error)
+
+
 @pytest.mark.parametrize("radius", ["2%", "6%"])
 def test_the_defaults_on_many_charts_agree_with_the_converged_reference(radius):
     # The defaults integrate the smooth surface through the vertex normals, which the converged

@@ -17,6 +17,7 @@ __all__ = [
     "shaded_view",
     "front_side",
     "atlas_bytes",
+    "surfel_grid_width",
     "ComputeSettings",
     "FeatureMaps",
     "compute_settings",
@@ -41,6 +42,10 @@ _UV = Sequence[float]
 
 def atlas_bytes(resolution: int, n_faces: int) -> int:
     """Bytes an atlas of ``n_faces`` faces takes at ``resolution``² (buffers and per-face tables)."""
+
+def surfel_grid_width(surface_area: float, uv_area: float, radius: float, largest: int) -> int:
+    """The smallest surfel grid (a power of two from 128 up to ``largest``) whose finest surfels put
+    about 256 in a ball of ``radius`` on a mesh of ``surface_area`` whose charts cover ``uv_area``."""
 
 def shape(
     name: str, sizes: list[float], counts: list[int], mirrored: bool = False

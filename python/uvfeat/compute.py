@@ -6,7 +6,7 @@ import numpy as np
 
 from .atlas import Atlas
 from .interop import mesh_source
-from .options import ATLAS_RESOLUTION, SURFEL_RESOLUTION, sums_at_vertices
+from .options import ATLAS_RESOLUTION, sums_at_vertices, surfel_resolution
 
 
 def compute(mesh, features, radius, *, resolution: int | None = None, precision: str = "f32",
@@ -25,8 +25,10 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     (``quadrature="surfels"``; the pattern's options, ``samples``, ``sampling``, ``margin`` ..., do
     not apply then), unless ``options`` name ``quadrature`` or ``query`` or ask for what the sums do
     not serve (``method="fit"``, ``adaptive``, ``standard_error``, the geodesic methods,
-    ``paper_mode``): then the maps are read. ``resolution`` defaults to 512 where the values are the
-    surfel sums, 1024 otherwise.
+    ``paper_mode``): then the maps are read. ``resolution`` defaults to 1024 for the maps and, for
+    the surfel sums, to the smallest grid up to 512 whose finest surfels put about 256 in a ball of
+    the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 at 1-4 % of the diagonal on
+    a scan's atlas, 256 at 8 %).
 
     Returns
     -------
@@ -40,7 +42,7 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)
     if resolution is None:
         surfels = sums_at_vertices(mesh, features, options, paper_mode)
-        resolution = SURFEL_RESOLUTION if surfels else ATLAS_RESOLUTION
+        resolution = surfel_resolution(mesh, radius) if surfels else ATLAS_RESOLUTION
     if paper_mode:
         precision = "f16"
     atlas = Atlas(mesh, resolution=resolution, precision=precision)

@@ -38,8 +38,8 @@ PAPER_OPTIONS = _core.paper_options()
 #: centre of its own ball, summed over the surfels (DESIGN.md §1.9).
 SURFEL_DEFAULTS = {"quadrature": "surfels"}
 
-#: The atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel sums:
-#: the surfel grid's (:func:`sums_at_vertices`).
+#: The largest atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel
+#: sums (:func:`sums_at_vertices`); :func:`surfel_resolution` takes less for large radii.
 SURFEL_RESOLUTION = 512
 
 #: The atlas resolution ``uvfeat.compute`` takes otherwise.
@@ -72,6 +72,35 @@ def sums_at_vertices(mesh, features, options: dict, paper_mode: bool) -> bool:
     estimators)."""
     named = options.get("quadrature") == "surfels" and options.get("method", DEFAULT_OPTIONS["method"]) == "integral"
     return named or bool(per_vertex_defaults(mesh, features, options, paper_mode))
+
+
+def surfel_resolution(mesh, radius) -> int:
+    """The atlas resolution of the surfel sums at the vertices of ``mesh`` for ``radius`` (a length,
+    a percentage, a list, or one per vertex: the smallest counts): the smallest power of two up to
+    :data:`SURFEL_RESOLUTION` whose finest surfels, of the mean size on its charts, put about 256 in
+    a ball (``_core.surfel_grid_width``); coarser pyramid levels would be summed anyway, and half
+    the width builds the surfels in a quarter of the time. Radii the computation will reject give
+    :data:`SURFEL_RESOLUTION` (the computation names them)."""
+    from .vertex_radii import per_vertex_radii
+
+    diagonal = mesh.bounding_box_diagonal
+    try:
+        own = per_vertex_radii(radius, mesh.n_vertices)
+        if own is not None:
+            smallest = float(own.min())
+        elif isinstance(radius, (list, tuple, np.ndarray)):
+            smallest = min(resolve_radius(r, diagonal) for r in radius)
+        else:
+            smallest = resolve_radius(radius, diagonal)
+    except (InvalidParameterError, TypeError, ValueError):
+        return SURFEL_RESOLUTION
+    corners = mesh.positions[mesh.faces]
+    surface_area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]),
+                                        axis=1).sum()
+    uv = mesh.uvs[mesh.uv_faces]
+    edges_u, edges_v = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
+    uv_area = 0.5 * np.abs(edges_u[:, 0] * edges_v[:, 1] - edges_u[:, 1] * edges_v[:, 0]).sum()
+    return _core.surfel_grid_width(float(surface_area), float(uv_area), smallest, SURFEL_RESOLUTION)
 
 
 def feature_names(features) -> list[str]:

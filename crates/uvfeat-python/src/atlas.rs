@@ -36,6 +36,13 @@ pub fn atlas_bytes(resolution: usize, n_faces: usize) -> u64 {
     uvfeat_core::atlas::atlas_bytes(resolution, n_faces)
 }
 
+/// The surfel grid for balls of `radius` on a mesh of `surface_area` whose charts cover `uv_area`
+/// (`uvfeat_core::sampling::surfel_grid_width`).
+#[pyfunction]
+pub fn surfel_grid_width(surface_area: f64, uv_area: f64, radius: f64, largest: usize) -> usize {
+    uvfeat_core::sampling::surfel_grid_width(surface_area, uv_area, radius, largest)
+}
+
 #[pymethods]
 impl PyAtlas {
     #[new]

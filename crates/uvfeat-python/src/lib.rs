@@ -25,6 +25,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(screen::shaded_view_array, m)?)?;
     m.add_function(wrap_pyfunction!(screen::front_side_of, m)?)?;
     m.add_function(wrap_pyfunction!(atlas::atlas_bytes, m)?)?;
+    m.add_function(wrap_pyfunction!(atlas::surfel_grid_width, m)?)?;
     m.add_function(wrap_pyfunction!(settings::feature_names, m)?)?;
     m.add_function(wrap_pyfunction!(settings::default_options, m)?)?;
     m.add_function(wrap_pyfunction!(settings::paper_options, m)?)?;

@@ -14,9 +14,9 @@ from .._core import __version__
 from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from ..notes import recorded_notes
-from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, SURFEL_RESOLUTION,
-                       check_query, check_resolution, feature_names, parse_radius, per_vertex_defaults,
-                       sums_at_vertices)
+from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
+                       check_resolution, feature_names, parse_radius, per_vertex_defaults, sums_at_vertices,
+                       surfel_resolution)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -120,10 +120,10 @@ class FeatureJob:
             return None
         return {**self.compute_options(), **per_vertex_defaults(mesh, self.features, named, self.paper_mode)}
 
-    def vertex_resolution(self) -> int:
-        """The atlas resolution of the sums at the vertices: the surfel grid's, as ``uvfeat.compute``,
-        unless ``resolution`` names another size than the default."""
-        return SURFEL_RESOLUTION if self.resolution == ATLAS_RESOLUTION else self.resolution
+    def vertex_resolution(self, mesh) -> int:
+        """The atlas resolution of the sums at the vertices: the surfel grid of the smallest radius,
+        as ``uvfeat.compute`` takes it, unless ``resolution`` names another size than the default."""
+        return surfel_resolution(mesh, list(self.radii)) if self.resolution == ATLAS_RESOLUTION else self.resolution
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
@@ -198,8 +198,9 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     if vertex_options is not None:
         # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
         vertex_atlas = atlas
-        if job.vertex_resolution() != job.resolution:
-            vertex_atlas = Atlas(mesh, resolution=job.vertex_resolution())
+        resolution = job.vertex_resolution(mesh)
+        if resolution != job.resolution:
+            vertex_atlas = Atlas(mesh, resolution=resolution)
             timings["vertex_rasterisation_s"] = vertex_atlas.timings["rasterisation_s"]
         at_vertices = (vertex_atlas, vertex_options)
     advance("buffers ready")

@@ -35,4 +35,4 @@ pub use reach::{Reach, DIRECTIONS};
 pub use sample::{ramp_centre, Sample, SampleCounts};
 pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
-pub use surfels::{gather_surfels, surfel_centre, SurfelBall};
+pub use surfels::{gather_surfels, surfel_centre, surfel_grid_width, SurfelBall};
