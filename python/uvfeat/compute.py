@@ -6,7 +6,7 @@ import numpy as np
 
 from .atlas import Atlas
 from .interop import mesh_source
-from .options import ATLAS_RESOLUTION, sums_at_vertices, surfel_resolution
+from .options import ATLAS_RESOLUTION, surfel_resolution, vertex_sums_options
 
 
 def compute(mesh, features, radius, *, resolution: int | None = None, precision: str = "f32",
@@ -41,7 +41,7 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
         # Packed for the atlas resolution `load` unwraps at, so that both share the cached unwrap.
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)
     if resolution is None:
-        surfels = sums_at_vertices(mesh, features, options, paper_mode)
+        surfels = vertex_sums_options(mesh, features, options, paper_mode) is not None
         resolution = surfel_resolution(mesh, radius) if surfels else ATLAS_RESOLUTION
     if paper_mode:
         precision = "f16"

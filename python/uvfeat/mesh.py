@@ -61,10 +61,15 @@ def _index_rows(values, count: int, name: str, what: str) -> np.ndarray:
     return np.ascontiguousarray(array)
 
 
+def face_area_vectors(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """(n_faces, 3): each face's normal scaled by twice its area (counter-clockwise corners)."""
+    corners = positions[faces]
+    return np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+
+
 def vertex_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Unit area-weighted vertex normals (zero where a vertex has no area around it)."""
-    corners = positions[faces]
-    face_normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    face_normals = face_area_vectors(positions, faces)
     corner_vertices = faces.reshape(-1)
     normals = np.column_stack([np.bincount(corner_vertices, np.repeat(face_normals[:, axis], 3), len(positions))
                                for axis in range(3)])

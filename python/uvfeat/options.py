@@ -11,6 +11,8 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
+from .mesh import face_area_vectors
+from .vertex_radii import per_vertex_radii
 
 #: Every feature name, in output order.
 FEATURES = tuple(_core.feature_names())
@@ -39,39 +41,47 @@ PAPER_OPTIONS = _core.paper_options()
 SURFEL_DEFAULTS = {"quadrature": "surfels"}
 
 #: The largest atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel
-#: sums (:func:`sums_at_vertices`); :func:`surfel_resolution` takes less for large radii.
+#: sums (:func:`vertex_sums_options`); :func:`surfel_resolution` takes less for large radii.
 SURFEL_RESOLUTION = 512
 
 #: The atlas resolution ``uvfeat.compute`` takes otherwise.
 ATLAS_RESOLUTION = 1024
 
 
+def _integral(options: dict) -> bool:
+    """Whether ``options`` ask for the integral estimators, which the surfel sums serve (the fit
+    needs every sample: ``evaluation::integration``)."""
+    return options.get("method", DEFAULT_OPTIONS["method"]) == "integral"
+
+
 def per_vertex_defaults(mesh, features, options: dict, paper_mode: bool) -> dict:
     """:data:`SURFEL_DEFAULTS` where they are the default of ``mesh``'s per-vertex values of
     ``features``: its atlas has more than one chart, or it has no UVs (so uvfeat's atlas will cut
-    it), the call names neither the quadrature, the maps' ``query`` nor the paper's choices, its
-    method is the integral estimators' (which the sums serve, ``evaluation::integration``) and the
-    core accepts its options with the surfels (not adaptive sampling, standard errors or the
-    geodesic methods); otherwise nothing, and invalid options are left for the computation to name.
-    ``options`` holds every option of the call, the named arguments (``adaptive``, ...) included."""
+    it), the call names neither the quadrature, the maps' ``query`` nor the paper's choices, asks
+    for the integral estimators and the core accepts its options with the surfels (not adaptive
+    sampling, standard errors or the geodesic methods); otherwise nothing, and invalid options are
+    left for the computation to name. ``options`` holds every option of the call, the named
+    arguments (``adaptive``, ...) included."""
     if paper_mode or "quadrature" in options or "query" in options or (mesh.has_uvs and mesh.n_charts == 1):
         return {}
-    candidate = {**DEFAULT_OPTIONS, **options, **SURFEL_DEFAULTS}
-    if candidate["method"] != "integral":
+    if not _integral(options):
         return {}
     try:
-        _core.compute_settings(feature_names(features), 1.0, core_options(candidate))
+        _core.compute_settings(feature_names(features), 1.0, core_options({**DEFAULT_OPTIONS, **options,
+                                                                            **SURFEL_DEFAULTS}))
     except (InvalidParameterError, TypeError, ValueError):
         return {}
     return dict(SURFEL_DEFAULTS)
 
 
-def sums_at_vertices(mesh, features, options: dict, paper_mode: bool) -> bool:
-    """Whether ``mesh``'s per-vertex values with ``options`` are the surfel sums at the vertices:
-    by default (:func:`per_vertex_defaults`) or named (``quadrature="surfels"`` with the integral
-    estimators)."""
-    named = options.get("quadrature") == "surfels" and options.get("method", DEFAULT_OPTIONS["method"]) == "integral"
-    return named or bool(per_vertex_defaults(mesh, features, options, paper_mode))
+def vertex_sums_options(mesh, features, options: dict, paper_mode: bool) -> dict | None:
+    """The options to add to ``options`` where ``mesh``'s per-vertex values are the surfel sums at
+    the vertices: none where ``options`` name them (``quadrature="surfels"`` with the integral
+    estimators), :func:`per_vertex_defaults` where they are the default; None where the values are
+    read from maps."""
+    if options.get("quadrature") == "surfels" and _integral(options):
+        return {}
+    return per_vertex_defaults(mesh, features, options, paper_mode) or None
 
 
 def surfel_resolution(mesh, radius) -> int:
@@ -81,8 +91,6 @@ def surfel_resolution(mesh, radius) -> int:
     a ball (``_core.surfel_grid_width``); coarser pyramid levels would be summed anyway, and half
     the width builds the surfels in a quarter of the time. Radii the computation will reject give
     :data:`SURFEL_RESOLUTION` (the computation names them)."""
-    from .vertex_radii import per_vertex_radii
-
     diagonal = mesh.bounding_box_diagonal
     try:
         own = per_vertex_radii(radius, mesh.n_vertices)
@@ -94,9 +102,7 @@ def surfel_resolution(mesh, radius) -> int:
             smallest = resolve_radius(radius, diagonal)
     except (InvalidParameterError, TypeError, ValueError):
         return SURFEL_RESOLUTION
-    corners = mesh.positions[mesh.faces]
-    surface_area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]),
-                                        axis=1).sum()
+    surface_area = 0.5 * np.linalg.norm(face_area_vectors(mesh.positions, mesh.faces), axis=1).sum()
     uv = mesh.uvs[mesh.uv_faces]
     edges_u, edges_v = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
     uv_area = 0.5 * np.abs(edges_u[:, 0] * edges_v[:, 1] - edges_u[:, 1] * edges_v[:, 0]).sum()

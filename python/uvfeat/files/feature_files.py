@@ -15,8 +15,7 @@ from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from ..notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
-                       check_resolution, feature_names, parse_radius, per_vertex_defaults, sums_at_vertices,
-                       surfel_resolution)
+                       check_resolution, feature_names, parse_radius, surfel_resolution, vertex_sums_options)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -116,9 +115,8 @@ class FeatureJob:
         chart, or named with ``quadrature="surfels"``); None where they are read from the maps."""
         named = {} if self.quadrature is None else {"quadrature": self.quadrature}
         named |= {"method": self.method, "standard_error": self.standard_error, "adaptive": self.adaptive}
-        if not sums_at_vertices(mesh, self.features, named, self.paper_mode):
-            return None
-        return {**self.compute_options(), **per_vertex_defaults(mesh, self.features, named, self.paper_mode)}
+        added = vertex_sums_options(mesh, self.features, named, self.paper_mode)
+        return None if added is None else {**self.compute_options(), **added}
 
     def vertex_resolution(self, mesh) -> int:
         """The atlas resolution of the sums at the vertices: the surfel grid of the smallest radius,
