@@ -185,6 +185,20 @@ class Mesh:
         return len(self._faces)
 
     @functools.cached_property
+    def surface_area(self) -> float:
+        """Total area of the faces (object units squared)."""
+        return float(0.5 * np.linalg.norm(face_area_vectors(self._positions, self._faces), axis=1).sum())
+
+    @functools.cached_property
+    def uv_area(self) -> float:
+        """Area the faces cover in UV space (of the unit square; 0 without UVs)."""
+        if not self.has_uvs:
+            return 0.0
+        uv = self._uvs[self._uv_faces]
+        edges_u, edges_v = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
+        return float(0.5 * np.abs(edges_u[:, 0] * edges_v[:, 1] - edges_u[:, 1] * edges_v[:, 0]).sum())
+
+    @functools.cached_property
     def bounding_box_diagonal(self) -> float:
         """Length of the axis-aligned bounding box diagonal of the vertices the faces use (object units)."""
         # A mask, not np.unique: sorting the corners took a copy of the faces (120 MB at 5M faces).

@@ -11,7 +11,6 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
-from .mesh import face_area_vectors
 from .vertex_radii import per_vertex_radii
 
 #: Every feature name, in output order.
@@ -102,11 +101,7 @@ def surfel_resolution(mesh, radius) -> int:
             smallest = resolve_radius(radius, diagonal)
     except (InvalidParameterError, TypeError, ValueError):
         return SURFEL_RESOLUTION
-    surface_area = 0.5 * np.linalg.norm(face_area_vectors(mesh.positions, mesh.faces), axis=1).sum()
-    uv = mesh.uvs[mesh.uv_faces]
-    edges_u, edges_v = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
-    uv_area = 0.5 * np.abs(edges_u[:, 0] * edges_v[:, 1] - edges_u[:, 1] * edges_v[:, 0]).sum()
-    return _core.surfel_grid_width(float(surface_area), float(uv_area), smallest, SURFEL_RESOLUTION)
+    return _core.surfel_grid_width(mesh.surface_area, mesh.uv_area, smallest, SURFEL_RESOLUTION)
 
 
 def feature_names(features) -> list[str]:

@@ -192,12 +192,11 @@ impl SurfelLevel {
         self.adjacent_first.push(0);
         let mut kept = 0;
         for s in 0..n {
-            let list = &mut adjacent[first[s] as usize..first[s + 1] as usize];
-            list.sort_unstable();
-            for k in first[s] as usize..first[s + 1] as usize {
-                let t = adjacent[k];
-                if kept == self.adjacent_first[s] as usize || adjacent[kept - 1] != t {
-                    adjacent[kept] = t;
+            let (list, start) = (first[s] as usize..first[s + 1] as usize, kept);
+            adjacent[list.clone()].sort_unstable();
+            for k in list {
+                if kept == start || adjacent[kept - 1] != adjacent[k] {
+                    adjacent[kept] = adjacent[k];
                     kept += 1;
                 }
             }
