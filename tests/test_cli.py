@@ -73,8 +73,8 @@ def test_compute_command_writes_per_vertex_files_maps_and_summary(tmp_path):
 
 def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp_path):
     # An icosphere without UVs gets uvfeat's atlas (many charts): its per-vertex files hold
-    # `uvfeat.compute`'s values at the vertices, its maps the pattern's; --quadrature pattern reads
-    # the per-vertex values from the maps.
+    # `uvfeat.compute`'s values at the vertices and its maps those values interpolated over the
+    # faces; --quadrature pattern computes the maps and reads the per-vertex values from them.
     import numpy as np
 
     import uvfeat
@@ -91,9 +91,17 @@ def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp
     np.testing.assert_array_equal(written, expected)
     from_maps = np.load(tmp_path / "pattern" / "per_vertex_r10pct.npz")["mean_curvature"]
     assert not np.array_equal(from_maps, expected) and abs(np.median(from_maps) - 1.0) < 0.1
-    for kind in ("default", "pattern"):
-        np.testing.assert_array_equal(np.load(tmp_path / kind / "mean_curvature_r10pct.npy"),
-                                      np.load(tmp_path / "pattern" / "mean_curvature_r10pct.npy"))
+    from uvfeat.options import surfel_resolution
+    from uvfeat.vertex_texture import vertex_texture
+
+    baked = np.load(tmp_path / "default" / "mean_curvature_r10pct.npy")
+    sums_atlas = uvfeat.Atlas(mesh, resolution=surfel_resolution(mesh, "10%"))
+    np.testing.assert_array_equal(baked, vertex_texture(sums_atlas, expected, 64))
+    pattern_map = np.load(tmp_path / "pattern" / "mean_curvature_r10pct.npy")
+    assert baked.shape == pattern_map.shape == (64, 64) and not np.array_equal(baked, pattern_map)
+    assert abs(np.nanmedian(baked) - 1.0) < 0.05 and np.isfinite(baked).mean() > 0.3
+    summary = json.loads((tmp_path / "default" / "summary.json").read_text())
+    assert summary["radii"]["10%"]["diagnostics"]["maps"].startswith("values at the vertices")
     # Named surfels: the values at the vertices too, as uvfeat.compute gives them.
     assert main(["compute", str(path), *options, "--quadrature", "surfels", "--out", str(tmp_path / "surfels")]) == 0
     named = uvfeat.compute(mesh, "mean_curvature", "10%", quadrature="surfels")["mean_curvature"]

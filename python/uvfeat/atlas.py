@@ -282,6 +282,16 @@ class Atlas:
         return vertex_values(self, features, radius, samples=samples, compute_resolution=compute_resolution,
                              adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
 
+    def vertex_texture(self, values, width: int = ARGUMENT_DEFAULTS["compute_resolution"]) -> np.ndarray:
+        """Per-vertex ``values`` (one per row of ``mesh.positions``, or ``(k, n_vertices)``) as a
+        ``width``² float32 texture (``(k, width, width)``), ``[j, i]`` with v up as
+        :attr:`FeatureMap.texture`, NaN off the charts: each texel the values of the corners of the
+        face under its centre, interpolated with its barycentric coordinates. ``uvfeat compute``
+        writes the values at the vertices of a many-chart atlas as maps this way."""
+        from .vertex_texture import vertex_texture
+
+        return vertex_texture(self, values, width)
+
     def neighbourhoods(self, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
                        compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
                        seed: int = ARGUMENT_DEFAULTS["seed"], tile_texels: int = 16384, **options):

@@ -20,7 +20,8 @@ from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
 from .options import (core_options, feature_names, per_vertex_defaults, resolve_options, resolve_radius,
                       warn_paper_mode)
-from .vertex_radii import LevelReader, levels, per_vertex_radii, texel_radii
+from .vertex_radii import LevelReader, levels, per_vertex_radii
+from .vertex_texture import vertex_texture
 
 #: How the notes about flagged vertices name the scale when each vertex has its own radius.
 OWN_RADII = "at each vertex's own radius"
@@ -208,7 +209,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
                      precision=atlas.precision, features_s=timings)
 
     if own_radii is not None:
-        texel_radius = texel_radii(atlas, own_radii, compute_resolution)
+        texel_radius = vertex_texture(atlas, own_radii, compute_resolution)
         # Off the charts every map is empty: any level will do there.
         texels = LevelReader(np.array(radii), np.where(np.isfinite(texel_radius), texel_radius, radii[0]).ravel())
 
@@ -255,6 +256,14 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     surfels with no maps in between (DESIGN.md §1.4.9); otherwise the maps of
     :func:`compute_maps`, read with ``query``. An atlas of more than one chart takes the surfels
     unless ``options`` say otherwise (:func:`~uvfeat.options.per_vertex_defaults`)."""
+    return vertex_values_and_flags(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
+                                   adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)[0]
+
+
+def vertex_values_and_flags(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool,
+                            seed: int, paper_mode: bool, options: dict) -> tuple[dict, dict]:
+    """:func:`vertex_values` and the flagged vertices (``FeatureMap.vertex_flags``): from the
+    surfel sums only ``"truncated"`` (a mesh border cuts the ball), which the sums tell."""
     named = {**options, "adaptive": adaptive}
     # The maps say it when they are computed instead.
     opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, named, paper_mode), **options}, paper_mode,
@@ -275,19 +284,21 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     if not _core.sums_apply(atlas._core, calls[0][0]):
         maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
-        return {name: feature.per_vertex() for name, feature in maps.items()}
+        return {name: feature.per_vertex() for name, feature in maps.items()}, maps[names[0]].vertex_flags()
     if paper_mode:
-        warn_paper_mode(stacklevel=4)
-    per_radius, texts = [], []
+        warn_paper_mode(stacklevel=5)
+    per_radius, truncated, texts = [], [], []
     for call_settings, radii, label in calls:
         values, _, border = _core.vertex_feature_values(atlas._core, call_settings, radii)
         per_radius.append(values)
+        truncated.append(border > 0)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
         texts += notes(counts, atlas.mesh.n_vertices, label)
     if texts:
-        warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=3)
-    return {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
+        warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
+    values = {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
+    return values, {"truncated": np.stack(truncated) if stack else truncated[0]}
 
 
 def _scale(radius) -> str:

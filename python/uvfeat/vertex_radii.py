@@ -6,8 +6,9 @@ estimators every vertex is the centre of its own ball of its own radius (DESIGN.
 The map-based paths compute one map per radius, so there the maps are computed at radii spaced
 by at most :data:`LEVEL_RATIO` from the smallest to the largest given radius, and each vertex
 reads the two levels around its radius, interpolated linearly in ``log r``. A feature map's texel
-does the same at the radius of its surface point (:func:`texel_radii`). A constant array is one
-level: the scalar radius's values exactly.
+does the same at the radius of its surface point, the vertices' radii interpolated over its face
+(:func:`uvfeat.vertex_texture.vertex_texture`). A constant array is one level: the scalar radius's
+values exactly.
 """
 
 from __future__ import annotations
@@ -87,30 +88,4 @@ def interpolate(values: np.ndarray, at: np.ndarray, radii: np.ndarray) -> np.nda
     """Per vertex, ``values`` (``(n_levels, n_vertices)``, level ``k`` at radius ``at[k]``) read at its
     radius, linearly in ``log r`` between the two levels around it."""
     return LevelReader(at, radii).interpolate(values)
-
-
-def texel_radii(atlas, radii: np.ndarray, width: int) -> np.ndarray:
-    """``(width, width)`` radius of the surface point each texel of a computation texture shows
-    (``[j, i]``, v up): the vertices' radii interpolated over the triangle under the texel's centre
-    with its barycentric coordinates (clamped into the triangle where a border texel's centre lies
-    just outside it); NaN off the charts."""
-    face_buffer = atlas.face
-    pick = ((np.arange(width) + 0.5) * face_buffer.shape[0] / width).astype(np.int64)
-    faces = face_buffer[np.ix_(pick, pick)]
-    covered = faces >= 0
-    mesh = atlas.mesh
-    j, i = np.nonzero(covered)
-    centre = np.stack([(i + 0.5) / width, (j + 0.5) / width], axis=-1)
-    uv = mesh.uvs[mesh.uv_faces[faces[covered]]]                     # (n, 3, 2)
-    e1, e2, d = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0], centre - uv[:, 0]
-    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        b1 = (d[:, 0] * e2[:, 1] - d[:, 1] * e2[:, 0]) / det
-        b2 = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / det
-    # A UV triangle without area has no barycentrics: its corners' mean radius.
-    weights = np.where((det != 0)[:, None], np.clip(np.stack([1 - b1 - b2, b1, b2], axis=-1), 0.0, None), 1.0)
-    weights /= weights.sum(axis=-1, keepdims=True)
-    out = np.full((width, width), np.nan)
-    out[covered] = (weights * radii[mesh.faces[faces[covered]]]).sum(axis=-1)
-    return out
 

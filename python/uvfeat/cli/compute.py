@@ -58,9 +58,12 @@ def write_features(mesh, args, console, load_notes: list[str], started: float, e
     console.print(atlas.summary())
     for radius, info in summary["radii"].items():
         d = info["diagnostics"]
-        console.print(f"r = {radius} ({info['radius']:.4g}): {info['features_s']:.2f} s, "
-                      f"{d['mean_valid_samples']:.0f} samples/texel, {100 * d['missing_fraction']:.2f} % missing, "
-                      f"{d['truncated_texels']} texels truncated by mesh borders")
+        if "maps" in d:  # the values at the vertices, the maps interpolated from them
+            described = f"values at the vertices, {info['flagged_vertices']['truncated']} truncated by mesh borders"
+        else:
+            described = (f"{d['mean_valid_samples']:.0f} samples/texel, {100 * d['missing_fraction']:.2f} % missing, "
+                         f"{d['truncated_texels']} texels truncated by mesh borders")
+        console.print(f"r = {radius} ({info['radius']:.4g}): {info['features_s']:.2f} s, {described}")
     notes = summary["warnings"] if explain is None else explain(summary["warnings"])
     print_notes_and_outputs(console, notes, "per-vertex .ply/.npz, maps .npy/.png, 3D pictures *_3d.png and summary.json",
                             args.out)

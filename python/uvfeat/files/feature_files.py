@@ -9,13 +9,16 @@ import os
 import time
 from dataclasses import asdict, dataclass, field
 
+import numpy as np
+
 from .. import _core
 from .._core import __version__
 from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from ..notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
-                       check_resolution, feature_names, parse_radius, surfel_resolution, vertex_sums_options)
+                       check_resolution, feature_names, parse_radius, resolve_radius, surfel_resolution,
+                       vertex_sums_options)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -142,20 +145,50 @@ def load_with_notes(path: str, uv: str, resolution: int, strict_uv: bool):
 
 @dataclass
 class RadiusMaps:
-    """The maps of one radius of a job, their per-vertex values and the notes of computing them."""
+    """The features of one radius of a job: per-vertex values, the maps' textures, the flagged
+    vertices and the notes of computing them. ``maps`` are the computed :class:`FeatureMap` objects,
+    None where the textures are the values at the vertices interpolated over the faces."""
     radius: str
-    maps: dict
+    length: float | np.ndarray
     per_vertex: dict
+    textures: dict
+    maps: dict | None
+    diagnostics: dict
+    flagged: dict
     notes: list[str]
+    features_s: float
     per_vertex_s: float
 
 
 def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True: None, at_vertices=None):
-    """The job's features on ``atlas``, one radius after the other (``advance`` reports each); the
-    per-vertex values read from the maps, or with ``at_vertices`` (an atlas and the options of
-    :meth:`FeatureJob.vertex_options`) evaluated at the vertices on that atlas."""
+    """The job's features on ``atlas``, one radius after the other (``advance`` reports each). The
+    per-vertex values are read from the maps, or, with ``at_vertices`` (an atlas and the options of
+    :meth:`FeatureJob.vertex_options`), evaluated at the vertices on that atlas; then, unless the
+    job names a quadrature, the maps are those values interpolated over the faces
+    (:func:`~uvfeat.vertex_texture.vertex_texture`) instead of computed at the texels."""
+    from ..features import vertex_values_and_flags
+    from ..vertex_texture import vertex_texture
+
     for radius in job.radii:
         advance(f"features at r = {radius}", done=False)
+        if at_vertices is not None and job.quadrature is None:
+            vertex_atlas, options = at_vertices
+            started = time.perf_counter()
+            with recorded_notes() as notes:
+                per_vertex, flags = vertex_values_and_flags(vertex_atlas, list(job.features), radius,
+                                                            **_split_arguments(options))
+            features_s = time.perf_counter() - started
+            advance(f"per-vertex values at r = {radius}")
+            started = time.perf_counter()
+            textures = dict(zip(per_vertex, vertex_texture(atlas, np.stack(list(per_vertex.values())),
+                                                           job.compute_resolution)))
+            length = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
+            diagnostics = {"maps": "values at the vertices, interpolated over each face",
+                           "texels": int(np.count_nonzero(np.isfinite(next(iter(textures.values())))))}
+            yield RadiusMaps(radius, length, per_vertex, textures, None, diagnostics,
+                             {n: int(v.sum()) for n, v in flags.items()}, notes, features_s,
+                             time.perf_counter() - started)
+            continue
         with recorded_notes() as notes:
             maps = atlas.compute(list(job.features), radius, **job.compute_options())
         advance(f"per-vertex values at r = {radius}")
@@ -167,7 +200,17 @@ def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True
             with recorded_notes() as vertex_notes:
                 per_vertex = vertex_atlas.per_vertex(list(job.features), radius, **options)
             notes += [note for note in vertex_notes if note not in notes]
-        yield RadiusMaps(radius, maps, per_vertex, notes, time.perf_counter() - started)
+        first = next(iter(maps.values()))
+        yield RadiusMaps(radius, first.radius, per_vertex, {n: m.texture for n, m in maps.items()}, maps,
+                         first.summary, {n: int(v.sum()) for n, v in first.vertex_flags().items()}, notes,
+                         first.settings["features_s"][0], time.perf_counter() - started)
+
+
+def _split_arguments(options: dict) -> dict:
+    """``Atlas.per_vertex``'s keyword options as :func:`~uvfeat.features.vertex_values_and_flags`
+    takes them: the named arguments apart, the rest as ``options``."""
+    named = ("samples", "compute_resolution", "adaptive", "seed", "paper_mode")
+    return {**{k: options[k] for k in named}, "options": {k: v for k, v in options.items() if k not in named}}
 
 
 def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], started: float,
@@ -175,8 +218,6 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     """Computes the job's features on ``mesh`` and writes its files to ``out``; ``advance``
     reports each step. ``summary.json`` is written last, and atomically, so its presence means
     the other files are complete. Returns the atlas and the summary."""
-    import numpy as np
-
     from ..atlas import Atlas
     from ..pictures.images import save_feature_figure
     from ..pictures.surface_plot import save_plot
@@ -187,49 +228,54 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
                "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
     advance("pre-processing + rasterising", done=False)
-    atlas = Atlas(mesh, resolution=job.resolution, precision="f16" if job.paper_mode else "f32")
+    vertex_options = job.vertex_options(mesh)
+    # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
+    vertex_resolution = None if vertex_options is None else job.vertex_resolution(mesh)
+    resolution = job.resolution
+    if vertex_options is not None and job.quadrature is None and vertex_resolution >= job.compute_resolution:
+        # The maps are those values interpolated over the faces under their texels (`computed_radii`):
+        # the sums' atlas serves them when it is as fine as the maps.
+        resolution = vertex_resolution
+    atlas = Atlas(mesh, resolution=resolution, precision="f16" if job.paper_mode else "f32")
     summary["diagnostics"] = atlas.diagnostics
     summary["warnings"] += atlas.warnings()
     timings = dict(atlas.timings)
-    vertex_options = job.vertex_options(mesh)
     at_vertices = None
     if vertex_options is not None:
-        # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
         vertex_atlas = atlas
-        resolution = job.vertex_resolution(mesh)
-        if resolution != job.resolution:
-            vertex_atlas = Atlas(mesh, resolution=resolution)
+        if vertex_resolution != resolution:
+            vertex_atlas = Atlas(mesh, resolution=vertex_resolution)
             timings["vertex_rasterisation_s"] = vertex_atlas.timings["rasterisation_s"]
         at_vertices = (vertex_atlas, vertex_options)
     advance("buffers ready")
     on_mesh: dict[str, list] = {name: [] for name in job.features}
     for computed in computed_radii(atlas, job, advance, at_vertices):
-        radius, maps, per_vertex = computed.radius, computed.maps, computed.per_vertex
+        radius, per_vertex = computed.radius, computed.per_vertex
         summary["warnings"] += computed.notes
-        first = next(iter(maps.values()))
         started_pv = time.perf_counter()
         for name, values in per_vertex.items():
             on_mesh[name].append(values)
         tag = radius_tag(radius)
+        first = None if computed.maps is None else next(iter(computed.maps.values()))
         directions = first.per_vertex_directions() if job.method == "fit" else None
-        write_per_vertex(out, tag, mesh, first.radius, per_vertex, directions)
+        write_per_vertex(out, tag, mesh, computed.length, per_vertex, directions)
         time_pv = computed.per_vertex_s + time.perf_counter() - started_pv
         advance(f"maps at r = {radius}")
         line_field = first.uv_principal_directions()[:, :, ["d1", "d2"].index(job.directions)] \
             if job.directions and job.pictures else None
-        for n, m in maps.items():
+        for n, texture in computed.textures.items():
             with atomic_file(os.path.join(out, f"{n}_r{tag}.npy")) as path:
-                np.save(path, m.texture)
+                np.save(path, texture)
             if job.pictures:
-                save_feature_figure(os.path.join(out, f"{n}_r{tag}.png"), n, m.texture, m.radius, mesh.name,
+                save_feature_figure(os.path.join(out, f"{n}_r{tag}.png"), n, texture, computed.length, mesh.name,
                                     line_field=line_field)
         summary["radii"][radius] = {
-            "radius": first.radius,
-            "features_s": first.settings["features_s"][0],
+            "radius": computed.length,
+            "features_s": computed.features_s,
             "per_vertex_s": time_pv,
-            "diagnostics": first.summary,
+            "diagnostics": computed.diagnostics,
             "per_vertex_range": {n: [float(np.nanmin(v)), float(np.nanmax(v))] for n, v in per_vertex.items()},
-            "flagged_vertices": {n: int(v.sum()) for n, v in first.vertex_flags().items()},
+            "flagged_vertices": computed.flagged,
         }
     if job.pictures:
         advance("3D pictures", done=False)
