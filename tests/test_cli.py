@@ -73,37 +73,45 @@ def test_compute_command_writes_per_vertex_files_maps_and_summary(tmp_path):
 
 def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp_path):
     # An icosphere without UVs gets uvfeat's atlas (many charts): its per-vertex files hold
-    # `uvfeat.compute`'s values at the vertices and its maps those values interpolated over the
-    # faces; --quadrature pattern computes the maps and reads the per-vertex values from them.
+    # `uvfeat.compute`'s values at the vertices; its maps are those values interpolated over the
+    # faces where the ball spans 3 face sides (10 %: 4.9 sides), and computed at the texels below
+    # (5 %: 2.5 sides); --quadrature pattern computes every map and reads the per-vertex values from them.
     import numpy as np
 
     import uvfeat
+    from uvfeat.options import surfel_resolution
 
     path = tmp_path / "ico.obj"
-    trimesh.creation.icosphere(3).export(path)
-    options = ["--feature", "mean_curvature", "--radius", "10%", "--compute-resolution", "64", "--samples", "64"]
-    assert main(["compute", str(path), *options, "--out", str(tmp_path / "default")]) == 0
-    assert main(["compute", str(path), *options, "--quadrature", "pattern", "--out", str(tmp_path / "pattern")]) == 0
+    trimesh.creation.icosphere(4).export(path)
+    options = ["--feature", "mean_curvature", "--compute-resolution", "64", "--samples", "64"]
+    for kind, radii in [("default", "10%"), ("both", "10%,5%"), ("pattern", "10%,5%")]:
+        named = ["--quadrature", "pattern"] if kind == "pattern" else []
+        assert main(["compute", str(path), *options, "--radius", radii, *named, "--out", str(tmp_path / kind)]) == 0
     mesh = uvfeat.load(str(path))
     assert mesh.n_charts > 1
     expected = uvfeat.compute(mesh, "mean_curvature", "10%")["mean_curvature"]
-    written = np.load(tmp_path / "default" / "per_vertex_r10pct.npz")["mean_curvature"]
-    np.testing.assert_array_equal(written, expected)
+    # Several radii take the surfel grid of the smallest, as uvfeat.compute.
+    beside = uvfeat.compute(mesh, "mean_curvature", ["10%", "5%"])["mean_curvature"][0]
+    for kind, values in [("default", expected), ("both", beside)]:
+        np.testing.assert_array_equal(np.load(tmp_path / kind / "per_vertex_r10pct.npz")["mean_curvature"], values)
     from_maps = np.load(tmp_path / "pattern" / "per_vertex_r10pct.npz")["mean_curvature"]
     assert not np.array_equal(from_maps, expected) and abs(np.median(from_maps) - 1.0) < 0.1
-    from uvfeat.options import surfel_resolution
-    from uvfeat.vertex_texture import vertex_texture
 
-    baked = np.load(tmp_path / "default" / "mean_curvature_r10pct.npy")
+    # One radius: the maps on the sums' own atlas; with a smaller radius beside it, on the 1024² one.
+    load = lambda kind, tag: np.load(tmp_path / kind / f"mean_curvature_r{tag}.npy")
     sums_atlas = uvfeat.Atlas(mesh, resolution=surfel_resolution(mesh, "10%"))
-    np.testing.assert_array_equal(baked, vertex_texture(sums_atlas, expected, 64))
-    pattern_map = np.load(tmp_path / "pattern" / "mean_curvature_r10pct.npy")
+    np.testing.assert_array_equal(load("default", "10pct"), sums_atlas.vertex_texture(expected, 64))
+    np.testing.assert_array_equal(load("both", "10pct"), uvfeat.Atlas(mesh).vertex_texture(beside, 64))
+    np.testing.assert_array_equal(load("both", "5pct"), load("pattern", "5pct"))
+    baked, pattern_map = load("default", "10pct"), load("pattern", "10pct")
     assert baked.shape == pattern_map.shape == (64, 64) and not np.array_equal(baked, pattern_map)
     assert abs(np.nanmedian(baked) - 1.0) < 0.05 and np.isfinite(baked).mean() > 0.3
-    summary = json.loads((tmp_path / "default" / "summary.json").read_text())
+    summary = json.loads((tmp_path / "both" / "summary.json").read_text())
     assert summary["radii"]["10%"]["diagnostics"]["maps"].startswith("values at the vertices")
+    assert "mean_valid_samples" in summary["radii"]["5%"]["diagnostics"]
     # Named surfels: the values at the vertices too, as uvfeat.compute gives them.
-    assert main(["compute", str(path), *options, "--quadrature", "surfels", "--out", str(tmp_path / "surfels")]) == 0
+    assert main(["compute", str(path), *options, "--radius", "10%", "--quadrature", "surfels",
+                 "--out", str(tmp_path / "surfels")]) == 0
     named = uvfeat.compute(mesh, "mean_curvature", "10%", quadrature="surfels")["mean_curvature"]
     np.testing.assert_array_equal(np.load(tmp_path / "surfels" / "per_vertex_r10pct.npz")["mean_curvature"], named)
 

@@ -38,6 +38,13 @@ def radius_list(radius) -> list[str]:
     return radii
 
 
+#: Radii of at least this many face sides (``sqrt(2 area / n_faces)``, about an edge) let the maps
+#: be the values at the vertices interpolated over each face: the features then vary over several
+#: faces. On the shared scans the interpolated maps came closer to the surfels summed at every
+#: texel than the pattern's maps from 2-3 sides up, and were 1-4 % of the range off at one side.
+VERTEX_MAP_SIDES = 3.0
+
+
 @dataclass(frozen=True)
 class FeatureJob:
     """Everything that decides the files of one mesh: what to compute, how, and what to write."""
@@ -121,6 +128,16 @@ class FeatureJob:
         added = vertex_sums_options(mesh, self.features, named, self.paper_mode)
         return None if added is None else {**self.compute_options(), **added}
 
+    def maps_from_vertices(self, mesh, radius: str) -> bool:
+        """Whether the maps of ``radius`` are the values at the vertices interpolated over the faces
+        (:func:`~uvfeat.vertex_texture.vertex_texture`) rather than computed at the texels: where the
+        job names no quadrature, the per-vertex values are the surfel sums at the vertices
+        (:meth:`vertex_options`) and the ball spans at least :data:`VERTEX_MAP_SIDES` face sides."""
+        if self.quadrature is not None or self.vertex_options(mesh) is None:
+            return False
+        side = (2.0 * mesh.surface_area / max(mesh.n_faces, 1)) ** 0.5
+        return resolve_radius(radius, mesh.bounding_box_diagonal) >= VERTEX_MAP_SIDES * side
+
     def vertex_resolution(self, mesh) -> int:
         """The atlas resolution of the sums at the vertices: the surfel grid of the smallest radius,
         as ``uvfeat.compute`` takes it, unless ``resolution`` names another size than the default."""
@@ -163,15 +180,15 @@ class RadiusMaps:
 def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True: None, at_vertices=None):
     """The job's features on ``atlas``, one radius after the other (``advance`` reports each). The
     per-vertex values are read from the maps, or, with ``at_vertices`` (an atlas and the options of
-    :meth:`FeatureJob.vertex_options`), evaluated at the vertices on that atlas; then, unless the
-    job names a quadrature, the maps are those values interpolated over the faces
-    (:func:`~uvfeat.vertex_texture.vertex_texture`) instead of computed at the texels."""
+    :meth:`FeatureJob.vertex_options`), evaluated at the vertices on that atlas; then, where
+    :meth:`FeatureJob.maps_from_vertices`, the maps are those values interpolated over the faces
+    instead of computed at the texels."""
     from ..features import vertex_values_and_flags
     from ..vertex_texture import vertex_texture
 
     for radius in job.radii:
         advance(f"features at r = {radius}", done=False)
-        if at_vertices is not None and job.quadrature is None:
+        if at_vertices is not None and job.maps_from_vertices(atlas.mesh, radius):
             vertex_atlas, options = at_vertices
             started = time.perf_counter()
             with recorded_notes() as notes:
@@ -232,7 +249,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
     # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
     vertex_resolution = None if vertex_options is None else job.vertex_resolution(mesh)
     resolution = job.resolution
-    if vertex_options is not None and job.quadrature is None and vertex_resolution >= job.compute_resolution:
+    if all(job.maps_from_vertices(mesh, r) for r in job.radii) and vertex_resolution >= job.compute_resolution:
         # The maps are those values interpolated over the faces under their texels (`computed_radii`):
         # the sums' atlas serves them when it is as fine as the maps.
         resolution = vertex_resolution
