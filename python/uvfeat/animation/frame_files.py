@@ -11,7 +11,7 @@ import os
 import numpy as np
 
 from ..io import atomic_file
-from ..notes import recorded_notes
+from ..files.notes import recorded_notes
 from .animate import Animation, animate
 
 

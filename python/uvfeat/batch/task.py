@@ -9,7 +9,7 @@ import os
 import time
 
 from ..files.feature_files import SUMMARY, FeatureJob, load_with_notes, radius_tag, write_feature_files
-from ..notes import recorded_notes
+from ..files.notes import recorded_notes
 from .inputs import MemoryMesh
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 import os
 
-from ..notes import recorded_notes
+from ..files.notes import recorded_notes
 from ..files.writers import write_json
 from ..options import DEFAULT_OPTIONS
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps

@@ -236,7 +236,7 @@ def bake(mesh, features, radius, *, out: str = "uvfeat-out/bake", **options) -> 
     from .feature_files import FeatureJob
     from ..interop import as_mesh
     from ..io import with_uv_policy
-    from ..notes import recorded_notes
+    from .notes import recorded_notes
 
     job = FeatureJob.of(features, radius, **options)
     with recorded_notes() as notes:

@@ -15,7 +15,7 @@ from .. import _core
 from .._core import __version__
 from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
-from ..notes import recorded_notes
+from .notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
                        check_resolution, feature_names, parse_radius, resolve_radius, surfel_resolution,
                        vertex_sums_options)
