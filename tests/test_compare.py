@@ -221,3 +221,23 @@ def test_comparison_pictures_survive_all_nan_feature(tmp_path):
     for path in paths.values():
         with Image.open(path) as picture:
             assert picture.size[0] > 100
+
+
+def test_many_charts_compare_the_values_at_the_vertices_that_uvfeat_compute_gives():
+    # An icosphere without UVs gets uvfeat's atlas: compare's parametric side is then
+    # uvfeat.compute's default (the surfel sums at the vertices, their own atlas), and a named
+    # quadrature keeps the maps. H of the unit sphere is 1.
+    import trimesh
+
+    ico = trimesh.creation.icosphere(4)
+    mesh = uvfeat.Mesh(ico.vertices, ico.faces).with_atlas(cache=False)
+    assert mesh.n_charts > 1
+    result = compare(mesh, "mean_curvature", "10%", truth_levels=0)
+    assert result.settings["parametric"].startswith("values at the vertices")
+    assert result.settings["mean_parametric_samples"] is None
+    np.testing.assert_array_equal(result.parametric["mean_curvature"],
+                                  uvfeat.compute(mesh, "mean_curvature", "10%")["mean_curvature"])
+    assert abs(np.median(result.parametric["mean_curvature"]) - 1.0) < 0.02
+    maps = compare(mesh, "mean_curvature", "10%", truth_levels=0, quadrature="pattern", **SMALL)
+    assert maps.settings["parametric"] == "maps" and maps.settings["mean_parametric_samples"] > 10
+    assert not np.array_equal(maps.parametric["mean_curvature"], result.parametric["mean_curvature"])

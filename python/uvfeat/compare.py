@@ -75,7 +75,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
             compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
             gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"],
             query: str = DEFAULT_OPTIONS["query"], method: str = DEFAULT_OPTIONS["method"],
-            sampling: str = DEFAULT_OPTIONS["sampling"], quadrature: str = DEFAULT_OPTIONS["quadrature"],
+            sampling: str = DEFAULT_OPTIONS["sampling"], quadrature: str | None = None,
             surface: str = DEFAULT_OPTIONS["surface"], truth_levels: int = 2) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
     ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"shared"``, ``"fast"`` or ``"exact"``,
@@ -83,10 +83,15 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     object-space reference on ``mesh`` for ``features`` at ``radius`` (object units or ``"2%"``),
     times both, and measures both against the truth: the reference on the same surface refined
     until it converges (up to ``truth_levels`` midpoint subdivisions, see
-    :func:`uvfeat.converged.converged_reference`), or the reference itself with ``truth_levels=0``."""
+    :func:`uvfeat.converged.converged_reference`), or the reference itself with ``truth_levels=0``.
+
+    With ``quadrature`` None the per-vertex values are those ``uvfeat.compute`` gives: on an atlas
+    of more than one chart the surfel sums at the vertices, on the surfels' own atlas (``resolution``
+    left at 1024: the grid of the radius), the pyramid of surfels timed with the features; the
+    maps otherwise."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
-    from .options import feature_names
+    from .options import ATLAS_RESOLUTION, feature_names, resolve_radius, surfel_resolution, vertex_sums_options
     from .converged import converged_reference
     from .reference import Reference
 
@@ -102,15 +107,26 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
                                     gaussian_method=gaussian_method)
     if not mesh.has_uvs:
         mesh = mesh.with_atlas(resolution=resolution)
+    options = {"gaussian_method": PARAMETRIC_GAUSSIAN[gaussian_method], "method": method, "sampling": sampling,
+               "surface": surface}
+    sums = None if quadrature is not None else vertex_sums_options(mesh, names, options, paper_mode=False)
+    if sums is not None and resolution == ATLAS_RESOLUTION:
+        resolution = surfel_resolution(mesh, radius)
     atlas = Atlas(mesh, resolution=resolution)
     started = time.perf_counter()
     atlas.update(mesh.positions)
     buffers_s = time.perf_counter() - started
-    maps = atlas.compute(names, radius, samples=samples, compute_resolution=compute_resolution, seed=seed,
-                         gaussian_method=PARAMETRIC_GAUSSIAN[gaussian_method], query=query, method=method,
-                         sampling=sampling, quadrature=quadrature, surface=surface)
-    features_s = time.perf_counter() - started - buffers_s
-    values = {name: m.per_vertex() for name, m in maps.items()}
+    if sums is None:
+        maps = atlas.compute(names, radius, samples=samples, compute_resolution=compute_resolution, seed=seed,
+                             query=query, quadrature=quadrature or DEFAULT_OPTIONS["quadrature"], **options)
+        features_s = time.perf_counter() - started - buffers_s
+        values = {name: m.per_vertex() for name, m in maps.items()}
+        first = next(iter(maps.values()))
+        length, parametric_samples = float(first.radius), float(first.summary["mean_valid_samples"])
+    else:
+        values = atlas.per_vertex(names, radius, seed=seed, **options, **sums)
+        features_s = time.perf_counter() - started - buffers_s
+        length, parametric_samples = resolve_radius(radius, mesh.bounding_box_diagonal), None
     parametric_s = time.perf_counter() - started
     reference_s = reference.last_timings["estimation_s"]
     timings = {
@@ -123,22 +139,21 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
         "untimed_preprocessing": atlas.timings["preprocessing_s"] + atlas.timings["rasterisation_s"],
         "untimed_connectivity": reference.connectivity_s,
     }
-    first = next(iter(maps.values()))
     settings = {"features": names, "radius": str(radius), "samples": int(samples), "resolution": int(resolution),
                 "compute_resolution": int(compute_resolution), "gaussian_method": gaussian_method,
                 "parametric_gaussian_method": PARAMETRIC_GAUSSIAN[gaussian_method], "seed": int(seed),
                 "query": query, "charts": mesh.n_charts,
+                "parametric": "maps" if sums is None else "values at the vertices (surfel sums)",
                 "mean_reference_samples": float(np.mean(reference.last_samples)),
-                "mean_parametric_samples": float(first.summary["mean_valid_samples"])}
+                "mean_parametric_samples": parametric_samples}
     if truth is None:
         errors = {name: absolute_errors(values[name], ref_values[name]) for name in names}
-        return Comparison(mesh, float(first.radius), values, ref_values, errors, timings, settings)
+        return Comparison(mesh, length, values, ref_values, errors, timings, settings)
     settings.update(truth_level=truth.level, truth_faces=truth.faces[-1], truth_changes=truth.changes,
                     truth_converged=truth.converged)
     errors = {name: absolute_errors(values[name], truth[name]) for name in names}
     reference_errors = {name: absolute_errors(ref_values[name], truth[name]) for name in names}
-    return Comparison(mesh, float(first.radius), values, ref_values, errors, timings, settings, truth.values,
-                      reference_errors)
+    return Comparison(mesh, length, values, ref_values, errors, timings, settings, truth.values, reference_errors)
 
 
 def save_comparison_pictures(comparison: Comparison, out_dir: str | os.PathLike) -> dict[str, str]:

@@ -110,7 +110,8 @@ def add_feature_options(parser: argparse.ArgumentParser) -> None:
                         help="how a neighbourhood is summed: the paper's sample pattern over a parametric disk, or "
                         "the atlas's surfels, each piece of surface counted once (docs/USAGE.md; default: the "
                         "pattern, except the per-vertex values of an atlas of more than one chart, which sum the "
-                        "surfels at the vertices)")
+                        "surfels at the vertices, and there compute's maps of radii of 3 face sides or more, those "
+                        "values interpolated over the faces)")
     parser.add_argument("--surface", choices=CHOICES["surface"], default=DEFAULT_OPTIONS["surface"],
                         help="with --quadrature surfels: the smooth surface through the vertex normals, or the "
                         "mesh's flat facets as the object-space reference measures them (default %(default)s)")

@@ -8,7 +8,6 @@ import os
 
 from ..files.notes import recorded_notes
 from ..files.writers import write_json
-from ..options import DEFAULT_OPTIONS
 from .common import add_feature_command_options, on_file, print_notes_and_outputs, steps
 
 
@@ -43,7 +42,7 @@ def write_comparison(mesh, args, console, load_notes: list[str], started: float)
             result = compare(mesh, args.feature, args.radius, samples=args.samples, resolution=args.resolution,
                              compute_resolution=args.compute_resolution, gaussian_method=args.gaussian_method,
                              seed=args.seed, query=args.query, method=args.method, sampling=args.sampling,
-                             quadrature=args.quadrature or DEFAULT_OPTIONS["quadrature"], surface=args.surface,
+                             quadrature=args.quadrature, surface=args.surface,
                              truth_levels=args.truth_levels)
         advance("pictures")
         summary = result.to_dict()
