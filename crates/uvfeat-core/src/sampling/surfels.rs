@@ -170,11 +170,14 @@ impl SurfelBall {
         let outer = self.ramp.1;
         REACHED.with_borrow_mut(|(reached, queue)| {
             reached.reset(level.len());
-            queue.clear();
+            if queue.len() <= level.len() {
+                queue.resize(level.len() + 1, 0);
+            }
             reached.insert(self.start);
-            queue.push(self.start);
-            let mut next = 0;
-            while let Some(&s) = queue.get(next) {
+            queue[0] = self.start;
+            let (mut next, mut len) = (0, 1);
+            while next < len {
+                let s = queue[next];
                 next += 1;
                 // The ring just outside the ball is a third of the surfels reached: no root for them.
                 let distance2 = (level.point[s as usize].position - centre).length_squared();
@@ -182,9 +185,9 @@ impl SurfelBall {
                     continue;
                 }
                 for &t in level.neighbours(s) {
-                    if reached.insert(t) {
-                        queue.push(t);
-                    }
+                    let new = reached.insert(t);
+                    queue[len] = t;
+                    len += usize::from(new);
                 }
                 visit(s, distance2.sqrt());
             }
