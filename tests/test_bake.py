@@ -132,3 +132,23 @@ def test_uvfeat_bake_takes_meshes_users_hold_and_writes_the_commands_files(tmp_p
         uvfeat.bake(spot, "mean_curvature", "4%", out=str(tmp_path / "x"), smaples=32)
     with pytest.raises(uvfeat.InvalidMeshError, match="cannot take"):
         uvfeat.bake("not a mesh", "mean_curvature", "4%", out=str(tmp_path / "y"))
+
+
+def test_on_many_charts_the_bake_holds_the_values_at_the_vertices(tmp_path):
+    # Spot's 13 charts at r = 16 % (9 face sides): the per-vertex values are uvfeat.compute's, the
+    # texture those values interpolated over the faces, and a renderer's read at each vertex gives
+    # its value back.
+    mesh = uvfeat.examples.spot()
+    summary = uvfeat.bake(mesh, "mean_curvature", "16%", out=str(tmp_path), compute_resolution=256)
+    expected = uvfeat.compute(mesh, "mean_curvature", "16%")["mean_curvature"]
+    ply = trimesh.load(tmp_path / "per_vertex_r16pct.ply", process=False)
+    np.testing.assert_array_equal(ply.metadata["_ply_raw"]["vertex"]["data"]["mean_curvature"], expected)
+    tiff = tifffile.imread(tmp_path / summary["radii"]["16%"]["files"]["mean_curvature"]["tiff"])
+    baked, seam = read_back(mesh, np.flipud(tiff))
+    spread = np.percentile(expected, 99) - np.percentile(expected, 1)
+    error = np.abs(baked - expected) / spread
+    # Measured: median 0.12 %, p99 3.4 % of the range (a texel of the 256² texture blends the
+    # values of the vertices around it); the texture upside down: median 24 %.
+    assert np.median(error) < 0.003 and np.percentile(error, 99) < 0.06
+    flipped, _ = read_back(mesh, tiff)
+    assert np.median(np.abs(flipped - expected) / spread) > 10 * np.median(error)

@@ -162,6 +162,13 @@ def split_by_uv(mesh: Mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return unique[:, 0], mesh.uvs[unique[:, 1]], inverse.reshape(-1, 3)
 
 
+def vertex_corners(mesh: Mesh, per_vertex: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every distinct (vertex, UV) corner of ``mesh``: its UV and its vertex's value, which a
+    texture interpolated from the vertices gives there (as :meth:`FeatureMap.corner_values`)."""
+    source, uvs, _ = split_by_uv(mesh)
+    return uvs, np.asarray(per_vertex, dtype=np.float64)[source]
+
+
 def write_glbs(out: str, stem: str, mesh: Mesh, per_vertex: np.ndarray, colour_texture: np.ndarray,
                cmap: str, low: float, high: float) -> dict[str, str]:
     """``<stem>_colours.glb`` (the feature as vertex colours, COLOR_0) and ``<stem>_texture.glb``
@@ -247,9 +254,8 @@ def bake(mesh, features, radius, *, out: str = "uvfeat-out/bake", **options) -> 
 def write_bakes(mesh: Mesh, job, out: str, load_notes: list[str], advance=lambda description, done=True: None) -> dict:
     """The work of :func:`bake` and ``uvfeat bake`` on a mesh with UVs; ``advance`` reports each
     step (``1 + 2 n_radii``)."""
-    from ..atlas import Atlas
     from ..extras import require
-    from .feature_files import computed_radii, radius_tag
+    from .feature_files import computed_radii, job_atlases, radius_tag
     from .writers import write_json, write_per_vertex
 
     require("scipy.ndimage", "dilating texture gutters")  # before minutes of computing, not after
@@ -260,20 +266,24 @@ def write_bakes(mesh: Mesh, job, out: str, load_notes: list[str], advance=lambda
                             "resolution": job.resolution, "compute_resolution": job.compute_resolution,
                             "method": job.method, "seed": job.seed}}
     advance("pre-processing + rasterising", done=False)
-    atlas = Atlas(mesh, resolution=job.resolution, precision="f16" if job.paper_mode else "f32")
+    atlas, at_vertices, _ = job_atlases(mesh, job)
     summary["warnings"] += atlas.warnings()
     advance("buffers ready")
-    for computed in computed_radii(atlas, job, advance):
+    for computed in computed_radii(atlas, job, advance, at_vertices):
         summary["warnings"] += computed.notes
         advance(f"bakes at r = {computed.radius}", done=False)
         tag = radius_tag(computed.radius)
-        files = {name: {kind: os.path.basename(path) for kind, path in
-                        bake_feature(out, f"{name}_r{tag}", atlas.mesh, name, m.texture,
-                                     computed.per_vertex[name], m.radius, m.corner_values()).items()}
-                 for name, m in computed.maps.items()}
-        first = next(iter(computed.maps.values()))
-        write_per_vertex(out, tag, atlas.mesh, first.radius, computed.per_vertex)
-        summary["radii"][computed.radius] = {"radius": first.radius, "files": files, "ply": f"per_vertex_r{tag}.ply"}
+        files = {}
+        for name, texture in computed.textures.items():
+            # Maps interpolated from the vertices read each corner's own vertex value.
+            corners = vertex_corners(atlas.mesh, computed.per_vertex[name]) if computed.maps is None \
+                else computed.maps[name].corner_values()
+            files[name] = {kind: os.path.basename(path) for kind, path in
+                           bake_feature(out, f"{name}_r{tag}", atlas.mesh, name, texture, computed.per_vertex[name],
+                                        computed.length, corners).items()}
+        write_per_vertex(out, tag, atlas.mesh, computed.length, computed.per_vertex)
+        summary["radii"][computed.radius] = {"radius": computed.length, "files": files,
+                                             "ply": f"per_vertex_r{tag}.ply"}
         advance(f"bakes at r = {computed.radius} written")
     write_json(os.path.join(out, "bake.json"), summary)
     return summary

@@ -60,9 +60,9 @@ class FeatureJob:
     query: str = DEFAULT_OPTIONS["query"]
     method: str = DEFAULT_OPTIONS["method"]
     sampling: str = DEFAULT_OPTIONS["sampling"]
-    #: None: the pattern's maps, and the per-vertex files by the default of the mesh's atlas
-    #: (:func:`~uvfeat.options.per_vertex_defaults`), as ``uvfeat.compute`` (``uvfeat bake`` reads
-    #: its per-vertex values from the maps it bakes).
+    #: None: the per-vertex values by the default of the mesh's atlas
+    #: (:func:`~uvfeat.options.per_vertex_defaults`), as ``uvfeat.compute``, and the maps those
+    #: values interpolated over the faces where :meth:`maps_from_vertices`, the pattern's elsewhere.
     quadrature: str | None = None
     surface: str = DEFAULT_OPTIONS["surface"]
     standard_error: bool = False
@@ -230,12 +230,34 @@ def _split_arguments(options: dict) -> dict:
     return {**{k: options[k] for k in named}, "options": {k: v for k, v in options.items() if k not in named}}
 
 
+def job_atlases(mesh, job: FeatureJob):
+    """The atlas of the job's maps and, where the per-vertex values are the surfel sums at the
+    vertices, the atlas and options they take (their own atlas at the surfels' resolution, as
+    ``uvfeat.compute``) for :func:`computed_radii`'s ``at_vertices``, else None; with the
+    rasterisation time of that second atlas (``vertex_rasterisation_s``) where there is one."""
+    from ..atlas import Atlas
+
+    vertex_options = job.vertex_options(mesh)
+    vertex_resolution = None if vertex_options is None else job.vertex_resolution(mesh)
+    resolution = job.resolution
+    if all(job.maps_from_vertices(mesh, r) for r in job.radii) and vertex_resolution >= job.compute_resolution:
+        # The maps are those values interpolated over the faces under their texels: the sums'
+        # atlas serves them when it is as fine as the maps.
+        resolution = vertex_resolution
+    atlas = Atlas(mesh, resolution=resolution, precision="f16" if job.paper_mode else "f32")
+    if vertex_options is None:
+        return atlas, None, {}
+    if vertex_resolution == resolution:
+        return atlas, (atlas, vertex_options), {}
+    vertex_atlas = Atlas(mesh, resolution=vertex_resolution)
+    return atlas, (vertex_atlas, vertex_options), {"vertex_rasterisation_s": vertex_atlas.timings["rasterisation_s"]}
+
+
 def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], started: float,
                         advance=lambda description, done=True: None, source: dict | None = None):
     """Computes the job's features on ``mesh`` and writes its files to ``out``; ``advance``
     reports each step. ``summary.json`` is written last, and atomically, so its presence means
     the other files are complete. Returns the atlas and the summary."""
-    from ..atlas import Atlas
     from ..pictures.images import save_feature_figure
     from ..pictures.surface_plot import save_plot
 
@@ -245,25 +267,10 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
                "radii": {}, "settings": job.settings(), "pictures": job.pictures,
                "sizes": {"vertices": len(mesh.positions), "faces": len(mesh.faces)}}
     advance("pre-processing + rasterising", done=False)
-    vertex_options = job.vertex_options(mesh)
-    # The values at the vertices take their own atlas at the surfels' resolution, as `uvfeat.compute`.
-    vertex_resolution = None if vertex_options is None else job.vertex_resolution(mesh)
-    resolution = job.resolution
-    if all(job.maps_from_vertices(mesh, r) for r in job.radii) and vertex_resolution >= job.compute_resolution:
-        # The maps are those values interpolated over the faces under their texels (`computed_radii`):
-        # the sums' atlas serves them when it is as fine as the maps.
-        resolution = vertex_resolution
-    atlas = Atlas(mesh, resolution=resolution, precision="f16" if job.paper_mode else "f32")
+    atlas, at_vertices, vertex_timings = job_atlases(mesh, job)
     summary["diagnostics"] = atlas.diagnostics
     summary["warnings"] += atlas.warnings()
-    timings = dict(atlas.timings)
-    at_vertices = None
-    if vertex_options is not None:
-        vertex_atlas = atlas
-        if vertex_resolution != resolution:
-            vertex_atlas = Atlas(mesh, resolution=vertex_resolution)
-            timings["vertex_rasterisation_s"] = vertex_atlas.timings["rasterisation_s"]
-        at_vertices = (vertex_atlas, vertex_options)
+    timings = dict(atlas.timings, **vertex_timings)
     advance("buffers ready")
     on_mesh: dict[str, list] = {name: [] for name in job.features}
     for computed in computed_radii(atlas, job, advance, at_vertices):
