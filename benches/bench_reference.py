@@ -41,7 +41,7 @@ def main() -> None:
         t, e = result.timings, result.errors[args.feature]
         print(f"  {radius:>7}{1e3 * t['parametric']:>15.0f}{1e3 * t['reference']:>14.0f}{t['speedup']:>10.3f}"
               f"{e['percent_ae']:>8.2f}{result.settings['mean_reference_samples']:>13.0f}"
-              f"{result.settings['mean_parametric_samples']:>13.0f}")
+              f"{result.settings['mean_parametric_samples'] or float('nan'):>13.0f}")
     if args.exact:
         reference = uvfeat.reference.Reference(mesh)
         some = np.linspace(0, mesh.n_vertices - 1, 500).astype(np.int64)

@@ -12,8 +12,8 @@ texel the centre of its own ball, the accurate quadrature at the texels and this
 `pattern` is `Atlas.compute` with `quadrature="pattern"` on 1024² buffers (one chart's default).
 Errors are %AE over the texels both maps cover: mean |map - surfels| over the surfels' Q1-Q99
 range. Times are medians of `--repeats` calls (`vertices`: values and texture; the maps: the
-features alone, their atlas built beforehand). Face sides: r over `sqrt(2 area / n_faces)`, about
-an edge (`uvfeat compute` interpolates the maps from 3 up).
+features alone, their atlas built beforehand). Face sides: r over `Mesh.face_side`, about an edge
+(`uvfeat compute` interpolates the maps from 3 up).
 """
 
 from __future__ import annotations
@@ -63,7 +63,6 @@ def main() -> None:
     for file in args.meshes:
         mesh = uvfeat.load(str(folder / file))
         maps_atlas = uvfeat.Atlas(mesh, resolution=1024)
-        side = (2.0 * mesh.surface_area / mesh.n_faces) ** 0.5
         for r in args.radii:
             radius = f"{r:g}%"
             texture_atlas = uvfeat.Atlas(mesh, resolution=max(args.width, surfel_resolution(mesh, radius)))
@@ -80,7 +79,7 @@ def main() -> None:
             truth = [surfels[f].texture for f in FEATURES]
             cell = lambda maps, seconds: " / ".join(f"{percent_error(m, t):.2f}" for m, t in zip(maps, truth)) \
                 + f", {seconds:.2f}"
-            sides = r / 100 * mesh.bounding_box_diagonal / side
+            sides = r / 100 * mesh.bounding_box_diagonal / mesh.face_side
             print(f"| {file} ({mesh.n_faces // 1000}K, {mesh.n_charts}) | {radius} | {sides:.1f} | {cell(baked, baked_s)} | "
                   f"{cell([pattern[f].texture for f in FEATURES], pattern_s)} | {surfels_s:.2f} |", flush=True)
 

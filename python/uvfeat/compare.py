@@ -88,10 +88,10 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     With ``quadrature`` None the per-vertex values are those ``uvfeat.compute`` gives: on an atlas
     of more than one chart the surfel sums at the vertices, on the surfels' own atlas (``resolution``
     left at 1024: the grid of the radius), the pyramid of surfels timed with the features; the
-    maps otherwise."""
+    maps otherwise, or where ``query`` is not the default."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
-    from .options import ATLAS_RESOLUTION, feature_names, resolve_radius, surfel_resolution, vertex_sums_options
+    from .options import feature_names, resolve_radius, sums_resolution, vertex_sums_options
     from .converged import converged_reference
     from .reference import Reference
 
@@ -109,9 +109,11 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
         mesh = mesh.with_atlas(resolution=resolution)
     options = {"gaussian_method": PARAMETRIC_GAUSSIAN[gaussian_method], "method": method, "sampling": sampling,
                "surface": surface}
-    sums = None if quadrature is not None else vertex_sums_options(mesh, names, options, paper_mode=False)
-    if sums is not None and resolution == ATLAS_RESOLUTION:
-        resolution = surfel_resolution(mesh, radius)
+    # A query other than the default asks how maps are read, as a named one does in uvfeat.compute.
+    named = options if query == DEFAULT_OPTIONS["query"] else {**options, "query": query}
+    sums = None if quadrature is not None else vertex_sums_options(mesh, names, named, paper_mode=False)
+    if sums is not None:
+        resolution = sums_resolution(mesh, radius, resolution)
     atlas = Atlas(mesh, resolution=resolution)
     started = time.perf_counter()
     atlas.update(mesh.positions)

@@ -209,7 +209,8 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
                      precision=atlas.precision, features_s=timings)
 
     if own_radii is not None:
-        texel_radius = vertex_texture(atlas, own_radii, compute_resolution)
+        # float64: a texel on a level reads it alone only where its radius equals the level's exactly.
+        texel_radius = vertex_texture(atlas, own_radii, compute_resolution, dtype=np.float64)
         # Off the charts every map is empty: any level will do there.
         texels = LevelReader(np.array(radii), np.where(np.isfinite(texel_radius), texel_radius, radii[0]).ravel())
 

@@ -190,6 +190,11 @@ class Mesh:
         return float(0.5 * np.linalg.norm(face_area_vectors(self._positions, self._faces), axis=1).sum())
 
     @functools.cached_property
+    def face_side(self) -> float:
+        """``sqrt(2 surface_area / n_faces)``: the side of the mean face, about an edge length."""
+        return float(np.sqrt(2.0 * self.surface_area / max(self.n_faces, 1)))
+
+    @functools.cached_property
     def uv_area(self) -> float:
         """Area the faces cover in UV space (of the unit square; 0 without UVs)."""
         if not self.has_uvs:

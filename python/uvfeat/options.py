@@ -104,6 +104,14 @@ def surfel_resolution(mesh, radius) -> int:
     return _core.surfel_grid_width(mesh.surface_area, mesh.uv_area, smallest, SURFEL_RESOLUTION)
 
 
+def sums_resolution(mesh, radius, resolution: int) -> int:
+    """The atlas resolution of the surfel sums at the vertices where a command or ``compare`` was
+    given ``resolution``: the surfel grid of the radius (:func:`surfel_resolution`) where it is the
+    default :data:`ATLAS_RESOLUTION` (a default cannot be told from a choice there), else
+    ``resolution``."""
+    return surfel_resolution(mesh, radius) if resolution == ATLAS_RESOLUTION else resolution
+
+
 def feature_names(features) -> list[str]:
     """A list of valid feature names from a name, a comma-separated string, a list, or "all"."""
     if isinstance(features, str):

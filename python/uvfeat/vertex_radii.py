@@ -88,4 +88,3 @@ def interpolate(values: np.ndarray, at: np.ndarray, radii: np.ndarray) -> np.nda
     """Per vertex, ``values`` (``(n_levels, n_vertices)``, level ``k`` at radius ``at[k]``) read at its
     radius, linearly in ``log r`` between the two levels around it."""
     return LevelReader(at, radii).interpolate(values)
-

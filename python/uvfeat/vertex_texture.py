@@ -11,8 +11,8 @@ import numpy as np
 from .errors import InvalidParameterError
 
 
-def vertex_texture(atlas, values, width: int) -> np.ndarray:
-    """``(width, width)`` float32 texture (``(k, width, width)`` for ``(k, n_vertices)`` values)
+def vertex_texture(atlas, values, width: int, dtype=np.float32) -> np.ndarray:
+    """``(width, width)`` texture of ``dtype`` (``(k, width, width)`` for ``(k, n_vertices)`` values)
     of ``values`` given per row of ``mesh.positions``, indexed ``[j, i]`` with v up, texel centres
     at ``(i + 0.5) / width``: the values of the triangle under each centre's texel of the atlas's
     face buffer, interpolated with the centre's barycentric coordinates (clamped into the triangle
@@ -40,7 +40,7 @@ def vertex_texture(atlas, values, width: int) -> np.ndarray:
         b2 = (e1[:, 0] * d[:, 1] - e1[:, 1] * d[:, 0]) / det
     weights = np.where((det != 0)[:, None], np.clip(np.stack([1 - b1 - b2, b1, b2], axis=-1), 0.0, None), 1.0)
     rows = values.reshape(-1, mesh.n_vertices)
-    out = np.full((len(rows), width, width), np.nan, dtype=np.float32)
+    out = np.full((len(rows), width, width), np.nan, dtype=dtype)
     corners = mesh.faces[faces[covered]]
     for row, texture in zip(rows, out):
         corner_values = row[corners]

@@ -36,7 +36,7 @@ def run(args) -> int:
     from ..batch import batch
 
     out, started = console(), time.perf_counter()
-    options = {k: v for k, v in FeatureJob.from_args(args).settings().items() if k not in ("features", "radii")}
+    options = FeatureJob.from_args(args).options()
     counts = {"computed": 0, "skipped": 0, "failed": 0}
     with contextlib.ExitStack() as stack:
         advance = None

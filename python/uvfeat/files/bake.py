@@ -79,9 +79,10 @@ def fit_gutters(texture: np.ndarray, uvs: np.ndarray, values: np.ndarray, smooth
     several corners share an empty texel it takes their best compromise; a weak pull towards the
     mean of its filled neighbours settles what the corners leave free). Filled texels are kept.
 
-    The values are :meth:`FeatureMap.corner_values`: the chart-masked lookup renormalises over the
-    filled texels of a footprint, which no single gutter value reproduces for every corner, so a
-    plain dilation left seam vertices a few % of the range off (``tests/test_bake.py``)."""
+    The values are :meth:`FeatureMap.corner_values` (for a texture interpolated from the vertices,
+    each corner's vertex value: :func:`vertex_corners`): the chart-masked lookup renormalises over
+    the filled texels of a footprint, which no single gutter value reproduces for every corner, so
+    a plain dilation left seam vertices a few % of the range off (``tests/test_bake.py``)."""
     from ..extras import require
 
     sparse = require("scipy.sparse", "fitting texture gutters")
@@ -193,8 +194,9 @@ def write_glbs(out: str, stem: str, mesh: Mesh, per_vertex: np.ndarray, colour_t
 def bake_feature(out: str, stem: str, mesh: Mesh, name: str, texture: np.ndarray, per_vertex: np.ndarray,
                  radius: float, corners: tuple[np.ndarray, np.ndarray] | None = None) -> dict[str, str]:
     """Writes every bake of one feature at one radius; returns the paths by kind. ``corners`` (the
-    map's :meth:`~uvfeat.FeatureMap.corner_values`) fits the gutters the vertices' footprints
-    reach (:func:`fit_gutters`) before the rest is dilated."""
+    map's :meth:`~uvfeat.FeatureMap.corner_values`, or :func:`vertex_corners` for a texture
+    interpolated from the vertices) fits the gutters the vertices' footprints reach
+    (:func:`fit_gutters`) before the rest is dilated."""
     from PIL import Image
 
     filled = dilate(texture if corners is None else fit_gutters(texture, *corners))

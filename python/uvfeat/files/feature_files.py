@@ -17,7 +17,7 @@ from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from .notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
-                       check_resolution, feature_names, parse_radius, resolve_radius, surfel_resolution,
+                       check_resolution, feature_names, parse_radius, resolve_radius, sums_resolution,
                        vertex_sums_options)
 from .writers import write_json, write_per_vertex
 
@@ -38,10 +38,11 @@ def radius_list(radius) -> list[str]:
     return radii
 
 
-#: Radii of at least this many face sides (``sqrt(2 area / n_faces)``, about an edge) let the maps
-#: be the values at the vertices interpolated over each face: the features then vary over several
-#: faces. On the shared scans the interpolated maps came closer to the surfels summed at every
-#: texel than the pattern's maps from 2-3 sides up, and were 1-4 % of the range off at one side.
+#: Radii of at least this many face sides (``Mesh.face_side``, about an edge) let the maps be the
+#: values at the vertices interpolated over each face: the features then vary over several faces.
+#: On the shared scans the interpolated maps came closer to the surfels summed at every texel than
+#: the pattern's maps from 2-3 sides up; below, 0.6-2.7 % of H's range off (K up to 4.2 %), worse
+#: than the pattern's in five cells of eight.
 VERTEX_MAP_SIDES = 3.0
 
 
@@ -135,18 +136,24 @@ class FeatureJob:
         (:meth:`vertex_options`) and the ball spans at least :data:`VERTEX_MAP_SIDES` face sides."""
         if self.quadrature is not None or self.vertex_options(mesh) is None:
             return False
-        side = (2.0 * mesh.surface_area / max(mesh.n_faces, 1)) ** 0.5
-        return resolve_radius(radius, mesh.bounding_box_diagonal) >= VERTEX_MAP_SIDES * side
+        return resolve_radius(radius, mesh.bounding_box_diagonal) >= VERTEX_MAP_SIDES * mesh.face_side
 
     def vertex_resolution(self, mesh) -> int:
         """The atlas resolution of the sums at the vertices: the surfel grid of the smallest radius,
         as ``uvfeat.compute`` takes it, unless ``resolution`` names another size than the default."""
-        return surfel_resolution(mesh, list(self.radii)) if self.resolution == ATLAS_RESOLUTION else self.resolution
+        return sums_resolution(mesh, list(self.radii), self.resolution)
+
+    def options(self) -> dict:
+        """The job's settings as :meth:`of` takes them, the features and radii apart."""
+        return {name: getattr(self, name) for name in self.__dataclass_fields__
+                if name not in ("features", "radii", "pictures")}
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
         recorded = asdict(self)
         del recorded["pictures"]
+        # Which maps are interpolated from the vertices: files written under another rule are not this job's.
+        recorded["vertex_map_sides"] = VERTEX_MAP_SIDES
         recorded["features"], recorded["radii"] = list(self.features), list(self.radii)
         return recorded
 
@@ -164,9 +171,11 @@ def load_with_notes(path: str, uv: str, resolution: int, strict_uv: bool):
 class RadiusMaps:
     """The features of one radius of a job: per-vertex values, the maps' textures, the flagged
     vertices and the notes of computing them. ``maps`` are the computed :class:`FeatureMap` objects,
-    None where the textures are the values at the vertices interpolated over the faces."""
+    None where the textures are the values at the vertices interpolated over the faces; then
+    ``features_s`` is the values' time, ``per_vertex_s`` 0 and ``diagnostics["maps_s"]`` the
+    interpolation's (otherwise ``features_s`` is the maps' and ``per_vertex_s`` the values')."""
     radius: str
-    length: float | np.ndarray
+    length: float
     per_vertex: dict
     textures: dict
     maps: dict | None
@@ -199,12 +208,11 @@ def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True
             started = time.perf_counter()
             textures = dict(zip(per_vertex, vertex_texture(atlas, np.stack(list(per_vertex.values())),
                                                            job.compute_resolution)))
-            length = resolve_radius(radius, atlas.mesh.bounding_box_diagonal)
             diagnostics = {"maps": "values at the vertices, interpolated over each face",
-                           "texels": int(np.count_nonzero(np.isfinite(next(iter(textures.values())))))}
-            yield RadiusMaps(radius, length, per_vertex, textures, None, diagnostics,
-                             {n: int(v.sum()) for n, v in flags.items()}, notes, features_s,
-                             time.perf_counter() - started)
+                           "texels": int(np.count_nonzero(np.isfinite(next(iter(textures.values()))))),
+                           "maps_s": time.perf_counter() - started}
+            yield RadiusMaps(radius, resolve_radius(radius, atlas.mesh.bounding_box_diagonal), per_vertex, textures,
+                             None, diagnostics, {n: int(v.sum()) for n, v in flags.items()}, notes, features_s, 0.0)
             continue
         with recorded_notes() as notes:
             maps = atlas.compute(list(job.features), radius, **job.compute_options())
@@ -281,7 +289,7 @@ def write_feature_files(mesh, job: FeatureJob, out: str, load_notes: list[str], 
             on_mesh[name].append(values)
         tag = radius_tag(radius)
         first = None if computed.maps is None else next(iter(computed.maps.values()))
-        directions = first.per_vertex_directions() if job.method == "fit" else None
+        directions = first.per_vertex_directions() if job.method == "fit" and first is not None else None
         write_per_vertex(out, tag, mesh, computed.length, per_vertex, directions)
         time_pv = computed.per_vertex_s + time.perf_counter() - started_pv
         advance(f"maps at r = {radius}")

@@ -170,6 +170,8 @@ impl SurfelBall {
         let outer = self.ramp.1;
         REACHED.with_borrow_mut(|(reached, queue)| {
             reached.reset(level.len());
+            // Each neighbour is written at `len` before it is known to be new (no branch to
+            // mispredict): one slot past the level's surfels takes the last such write.
             if queue.len() <= level.len() {
                 queue.resize(level.len() + 1, 0);
             }
