@@ -96,7 +96,7 @@ class FeatureJob:
     @classmethod
     def of(cls, features, radius, pictures: bool = False, **options) -> FeatureJob:
         """The job of a Python call's arguments: unknown option names are one clear error."""
-        valid = [f for f in cls.__dataclass_fields__ if f not in ("features", "radii", "pictures")]
+        valid = cls.option_names()
         unknown = sorted(set(options) - set(valid))
         if unknown:
             raise InvalidParameterError(f"unknown option(s) {unknown}; valid: {', '.join(valid)}")
@@ -143,10 +143,14 @@ class FeatureJob:
         as ``uvfeat.compute`` takes it, unless ``resolution`` names another size than the default."""
         return sums_resolution(mesh, list(self.radii), self.resolution)
 
+    @classmethod
+    def option_names(cls) -> list[str]:
+        """The settings :meth:`of` takes as keywords (all but the features, radii and pictures)."""
+        return [name for name in cls.__dataclass_fields__ if name not in ("features", "radii", "pictures")]
+
     def options(self) -> dict:
         """The job's settings as :meth:`of` takes them, the features and radii apart."""
-        return {name: getattr(self, name) for name in self.__dataclass_fields__
-                if name not in ("features", "radii", "pictures")}
+        return {name: getattr(self, name) for name in self.option_names()}
 
     def settings(self) -> dict:
         """The settings recorded in ``summary.json``: equal settings give equal files."""
