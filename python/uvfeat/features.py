@@ -18,8 +18,8 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
-from .options import (core_options, feature_names, per_vertex_defaults, resolve_options, resolve_radius,
-                      warn_paper_mode)
+from .options import (ARGUMENT_DEFAULTS, core_options, feature_names, per_vertex_defaults, resolve_options,
+                      resolve_radius, warn_paper_mode)
 from .vertex_radii import LevelReader, levels, per_vertex_radii
 from .vertex_texture import vertex_texture
 
@@ -258,13 +258,16 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
     :func:`compute_maps`, read with ``query``. An atlas of more than one chart takes the surfels
     unless ``options`` say otherwise (:func:`~uvfeat.options.per_vertex_defaults`)."""
     return vertex_values_and_flags(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
-                                   adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)[0]
+                                   adaptive=adaptive, seed=seed, paper_mode=paper_mode, **options)[0]
 
 
-def vertex_values_and_flags(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool,
-                            seed: int, paper_mode: bool, options: dict) -> tuple[dict, dict]:
+def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"],
+                            compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
+                            adaptive: bool = ARGUMENT_DEFAULTS["adaptive"], seed: int = ARGUMENT_DEFAULTS["seed"],
+                            paper_mode: bool = False, **options) -> tuple[dict, dict]:
     """:func:`vertex_values` and the flagged vertices (``FeatureMap.vertex_flags``): from the
-    surfel sums only ``"truncated"`` (a mesh border cuts the ball), which the sums tell."""
+    surfel sums only ``"truncated"`` (a mesh border cuts the ball), which the sums tell. Takes the
+    arguments of :meth:`uvfeat.Atlas.per_vertex`."""
     named = {**options, "adaptive": adaptive}
     # The maps say it when they are computed instead.
     opts = resolve_options({**per_vertex_defaults(atlas.mesh, features, named, paper_mode), **options}, paper_mode,

@@ -32,7 +32,8 @@ def vertex_texture(atlas, values, width: int, dtype=np.float32) -> np.ndarray:
     covered = faces >= 0
     j, i = np.nonzero(covered)
     centre = np.stack([(i + 0.5) / width, (j + 0.5) / width], axis=-1)
-    uv = mesh.uvs[mesh.uv_faces[faces[covered]]]                     # (n, 3, 2)
+    face = faces[covered]
+    uv = mesh.uvs[mesh.uv_faces[face]]                               # (n, 3, 2)
     e1, e2, d = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0], centre - uv[:, 0]
     det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -41,7 +42,7 @@ def vertex_texture(atlas, values, width: int, dtype=np.float32) -> np.ndarray:
     weights = np.where((det != 0)[:, None], np.clip(np.stack([1 - b1 - b2, b1, b2], axis=-1), 0.0, None), 1.0)
     rows = values.reshape(-1, mesh.n_vertices)
     out = np.full((len(rows), width, width), np.nan, dtype=dtype)
-    corners = mesh.faces[faces[covered]]
+    corners = mesh.faces[face]
     for row, texture in zip(rows, out):
         corner_values = row[corners]
         finite = np.isfinite(corner_values)

@@ -205,8 +205,7 @@ def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True
             vertex_atlas, options = at_vertices
             started = time.perf_counter()
             with recorded_notes() as notes:
-                per_vertex, flags = vertex_values_and_flags(vertex_atlas, list(job.features), radius,
-                                                            **_split_arguments(options))
+                per_vertex, flags = vertex_values_and_flags(vertex_atlas, list(job.features), radius, **options)
             features_s = time.perf_counter() - started
             advance(f"per-vertex values at r = {radius}")
             started = time.perf_counter()
@@ -233,13 +232,6 @@ def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True
         yield RadiusMaps(radius, first.radius, per_vertex, {n: m.texture for n, m in maps.items()}, maps,
                          first.summary, {n: int(v.sum()) for n, v in first.vertex_flags().items()}, notes,
                          first.settings["features_s"][0], time.perf_counter() - started)
-
-
-def _split_arguments(options: dict) -> dict:
-    """``Atlas.per_vertex``'s keyword options as :func:`~uvfeat.features.vertex_values_and_flags`
-    takes them: the named arguments apart, the rest as ``options``."""
-    named = ("samples", "compute_resolution", "adaptive", "seed", "paper_mode")
-    return {**{k: options[k] for k in named}, "options": {k: v for k, v in options.items() if k not in named}}
 
 
 def job_atlases(mesh, job: FeatureJob):
