@@ -11,7 +11,7 @@
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
 //! and the object-space reference's; a linear ramp one surfel wide weighs a plane's disk exactly.
 
-use super::{NeighbourhoodStats, StatsSettings};
+use super::{NeighbourhoodStats, StatsSettings, WeightedSums};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
@@ -75,27 +75,37 @@ pub struct SurfelSumSettings {
 
 /// The sums of the ball's connected part around `centre`, with their sample counts (`valid`:
 /// surfels summed; `border`: those in the ball a mesh border passes through). Empty sums where the
-/// centre's texel holds no surfel of its chart.
+/// centre's texel holds no surfel of its chart. No `sum w^2` is kept (the sums give no standard
+/// errors: [`WeightedSums::standard_error`] is NaN).
 pub fn surfel_sums(
     atlas: &Atlas,
     centre: &SurfelCentre,
     settings: &SurfelSumSettings,
 ) -> (NeighbourhoodStats, SampleCounts) {
     let surfels = atlas.surfels(settings.surface);
-    let mut stats = NeighbourhoodStats::default();
-    let mut counts = SampleCounts::default();
+    let mut sums = BallSums::default();
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
     let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r) else {
-        return (stats, counts);
+        return (NeighbourhoodStats::default(), SampleCounts::default());
     };
     let (inner, outer) = search.ramp;
-    let ball =
-        Ball { p: centre.position, n: centre.normal, outer, inverse_ramp: 1.0 / (outer - inner), inverse_r: 1.0 / r };
+    let ball = Ball {
+        p: centre.position,
+        n: centre.normal,
+        outer,
+        inverse_ramp: 1.0 / (outer - inner),
+        inverse_r2: 1.0 / (r * r),
+        r,
+        rho_min: settings.stats.rho_min,
+    };
     let level = &surfels.levels[search.level];
-    search
-        .search(level, centre.position, |s, distance| ball.add(&mut stats, &mut counts, level, s, distance, settings));
-    (stats, counts)
+    if settings.with_normals {
+        search.search(level, centre.position, |s, distance| ball.add::<true>(&mut sums, level, s, distance));
+    } else {
+        search.search(level, centre.position, |s, distance| ball.add::<false>(&mut sums, level, s, distance));
+    }
+    (sums.stats(r), sums.counts)
 }
 
 /// The ball and its ramp, seen from the centre.
@@ -106,57 +116,92 @@ struct Ball {
     outer: f64,
     /// `1 / width` of the ramp.
     inverse_ramp: f64,
-    /// `1 / r`.
-    inverse_r: f64,
+    /// `1 / r^2`.
+    inverse_r2: f64,
+    r: f64,
+    /// Inner exclusion of the curvature moments and bending.
+    rho_min: f64,
+}
+
+/// The estimators' sums over a ball, only those the surfels feed (few enough to stay in registers:
+/// the sums are half the time of a ball).
+#[derive(Default)]
+struct BallSums {
+    /// `sum dA rho`: the volumes' weight (elevation and radial alike).
+    volume_weight: f64,
+    /// `sum dA n.(q - p)` and `sum dA rho sin^2(alpha)`.
+    elevation: (f64, f64),
+    /// `sum dA |q - p|^2` and `sum dA rho |q - p|^2`.
+    radial: (f64, f64),
+    /// `sum dA`.
+    area: f64,
+    /// `sum w`, `sum w k`, `sum w k^2` of the curvature moments (`w = dA rho^2 / r^2`).
+    curvature: (f64, f64, f64),
+    /// `sum dA`, `sum dA g` and `sum dA g^2` of the bending integrand.
+    bending: (f64, f64, f64),
+    counts: SampleCounts,
+}
+
+impl BallSums {
+    /// The sums as the estimators read them (`w2` left 0).
+    fn stats(&self, r: f64) -> NeighbourhoodStats {
+        let inverse_r = 1.0 / r;
+        let sums = |w, wg, wg2| WeightedSums { w, w2: 0.0, wg, wg2 };
+        NeighbourhoodStats {
+            elevation: sums(self.volume_weight, self.elevation.0, self.elevation.1),
+            radial: sums(self.volume_weight, self.radial.0 * inverse_r, self.radial.1 * inverse_r * inverse_r),
+            bending: sums(self.bending.0, self.bending.1, self.bending.2),
+            normal_curvature: sums(self.curvature.0, self.curvature.1, self.curvature.2),
+            // The area alone (the area ratio): the surfels serve the Euclidean ball only, never the
+            // geodesic-disk K (`ComputeSettings::validate`).
+            geodesic_disk: sums(self.area, 0.0, 0.0),
+        }
+    }
 }
 
 impl Ball {
-    /// Adds surfel `s` of `level`, at `distance` from the centre, weighed by the ramp.
+    /// Adds surfel `s` of `level`, at `distance` from the centre, weighed by the ramp (and its
+    /// normal's bending integrand `WITH_NORMALS`).
     #[inline]
-    fn add(
-        &self,
-        stats: &mut NeighbourhoodStats,
-        counts: &mut SampleCounts,
-        level: &SurfelLevel,
-        s: u32,
-        distance: f64,
-        settings: &SurfelSumSettings,
-    ) {
+    fn add<const WITH_NORMALS: bool>(&self, sums: &mut BallSums, level: &SurfelLevel, s: u32, distance: f64) {
         let weight = ((self.outer - distance) * self.inverse_ramp).min(1.0);
         let SurfelPoint { position, area, spread } = level.point[s as usize];
         let (area, spread) = (area * weight, spread * weight);
         if !(area > 0.0) {
             return;
         }
-        let StatsSettings { radius: r, rho_min, .. } = settings.stats;
-        counts.valid += 1;
-        counts.border += u32::from(level.on_border[s as usize] && distance < r);
-        let inverse_r = self.inverse_r;
+        sums.counts.valid += 1;
+        sums.counts.border += u32::from(distance < self.r && level.on_border[s as usize]);
         let height = self.n.dot(position - self.p);
+        let distance2 = distance * distance;
         // `dA (n . (q - p))` and `dA |q - p|^2` summed exactly over the surfel.
         let elevation = area * height;
-        let second = area * distance * distance + spread;
+        let second = area * distance2 + spread;
         // The surfel holding the centre keeps its area (its elevation is 0 there).
-        let inverse_distance = if distance > 1e-6 * r { 1.0 / distance } else { 0.0 };
-        let sin_alpha = height * inverse_distance;
-        // The volumes' weight `dA rho` at the centroid (H's ratio does not read it).
+        let inverse_distance2 = if distance > 1e-6 * self.r { 1.0 / distance2 } else { 0.0 };
+        // The volumes' weight `dA rho` at the centroid (H's ratio does not read it), with
+        // `dA rho sin^2(alpha) = dA h^2 / rho`.
         let w = area * distance;
-        stats.elevation.add_parts(w, elevation, w * sin_alpha * sin_alpha);
-        stats.radial.add_parts(w, second * inverse_r, second * distance * inverse_r * inverse_r);
-        // The area alone (the area ratio): the surfels serve the Euclidean ball only, never the
-        // geodesic-disk K (`ComputeSettings::validate`).
-        stats.geodesic_disk.add(area, 0.0);
-        if distance >= rho_min {
-            if settings.with_normals {
-                let g = (self.n - level.normal[s as usize]).length_squared() * inverse_distance * inverse_distance;
-                stats.bending.add(area, g);
+        sums.volume_weight += w;
+        sums.elevation.0 += elevation;
+        sums.elevation.1 += elevation * height * distance * inverse_distance2;
+        sums.radial.0 += second;
+        sums.radial.1 += second * distance;
+        sums.area += area;
+        if distance >= self.rho_min {
+            if WITH_NORMALS {
+                let g = (self.n - level.normal[s as usize]).length_squared() * inverse_distance2;
+                sums.bending.0 += area;
+                sums.bending.1 += area * g;
+                sums.bending.2 += area * g * g;
             }
             // `K = 3 <k>^2 - 2 <k^2>` is a difference of two moments whose centroid errors cancel
             // when both are read by the same rule: `w = dA rho^2 / r^2` at the centroid, not with
             // the spread (the 18-chart torus's K: 0.98 % of its range with it, 0.4 % without).
-            let w = area * distance * distance * inverse_r * inverse_r;
-            let k = -2.0 * sin_alpha * inverse_distance;
-            stats.normal_curvature.add_parts(w, w * k, w * k * k);
+            // With `k = -2 h / rho^2`: `w k = -2 dA h / r^2`, `w k^2 = 4 dA h^2 / (r^2 rho^2)`.
+            sums.curvature.0 += area * distance2 * self.inverse_r2;
+            sums.curvature.1 += -2.0 * elevation * self.inverse_r2;
+            sums.curvature.2 += 4.0 * elevation * height * self.inverse_r2 * inverse_distance2;
         }
     }
 }
