@@ -8,6 +8,7 @@ use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::evaluation::{integration, Integration, PixelResult};
 use crate::features::{surfel_sums, SurfelCentre};
+use crate::raster::morton;
 use crate::sampling::SampleCounts;
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
@@ -140,14 +141,6 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
 
 /// Position of texel-space point `uv` along a Z (Morton) curve over a `resolution`² grid.
 fn z_order(uv: glam::DVec2, resolution: usize) -> u64 {
-    let cell = |x: f64| (x * resolution as f64).clamp(0.0, resolution as f64 - 1.0) as u64;
-    let spread = |mut x: u64| {
-        x &= 0xffff_ffff;
-        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
-        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
-        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
-        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
-        (x | (x << 1)) & 0x5555_5555_5555_5555
-    };
-    spread(cell(uv.x)) | (spread(cell(uv.y)) << 1)
+    let cell = |x: f64| (x * resolution as f64).clamp(0.0, resolution as f64 - 1.0) as usize;
+    morton(cell(uv.x), cell(uv.y))
 }

@@ -14,4 +14,4 @@ pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
 pub use coverage::{Coverage, CoverageDiagnostics};
 pub use patches::{FacePatch, FacePatches};
-pub use surfels::{Surface, SurfelLevel, SurfelPoint, Surfels};
+pub use surfels::{morton, Surface, SurfelLevel, SurfelPoint, Surfels};

@@ -64,7 +64,8 @@ pub struct SurfelLevel {
     /// Adjacent surfels of `s`: `adjacent[adjacent_first[s]..adjacent_first[s + 1]]`.
     adjacent_first: Vec<u32>,
     adjacent: Vec<u32>,
-    /// Finest level only: the surfels of texel `t` are `by_texel[t]..by_texel[t + 1]` (texel order).
+    /// Finest level only: the first surfel of texel `t` (its surfels are consecutive), `u32::MAX`
+    /// where it holds none.
     by_texel: Vec<u32>,
 }
 
@@ -94,8 +95,11 @@ impl SurfelLevel {
     /// Finest level only: the surfel of `chart` in texel `t` (`j * width + i`), if that texel holds
     /// part of it.
     pub fn at(&self, t: usize, chart: i32) -> Option<u32> {
-        let range = self.by_texel.get(t..t + 2)?;
-        (range[0]..range[1]).find(|&s| self.chart[s as usize] == chart)
+        let first = *self.by_texel.get(t)?;
+        (first as usize..self.len())
+            .take_while(|&s| self.texel[s] as usize == t)
+            .find(|&s| self.chart[s] == chart)
+            .map(|s| s as u32)
     }
 
     /// The texel `j * width + i` of texel `(i, j)`, `None` off the grid.
@@ -112,16 +116,11 @@ impl SurfelLevel {
 
     /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
     /// across texel sides and across the seams.
-    fn finest(width: usize, sums: &[Fragment], seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
+    fn finest(width: usize, mut sums: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
+        in_z_order(&mut sums, width);
         let owner: Vec<u32> = (0..sums.len() as u32).collect();
-        let mut level = Self::summed(width, sums, &owner);
-        level.by_texel = vec![0; width * width + 1];
-        for &t in &level.texel {
-            level.by_texel[t as usize + 1] += 1;
-        }
-        for t in 0..width * width {
-            level.by_texel[t + 1] += level.by_texel[t];
-        }
+        let mut level = Self::summed(width, &sums, &owner);
+        level.index_texels();
         let (pairs, on_border) = {
             let level = &level;
             let find =
@@ -206,6 +205,14 @@ impl SurfelLevel {
         self.adjacent = adjacent;
     }
 
+    /// Sets `by_texel` (the surfels of a texel must be consecutive).
+    fn index_texels(&mut self) {
+        self.by_texel = vec![u32::MAX; self.width * self.width];
+        for (s, &t) in self.texel.iter().enumerate().rev() {
+            self.by_texel[t as usize] = s as u32;
+        }
+    }
+
     /// The next level up: in each 2 x 2 block of texels, the surfels of one chart joined by
     /// adjacency form one surfel; sets `self.parent`.
     fn coarser(&mut self) -> Self {
@@ -232,10 +239,12 @@ impl SurfelLevel {
                 }
             }
         }
-        let mut order: Vec<(u32, i32, u32, u32)> = (0..self.len())
+        // In Z order of the texels, as the finest level (`in_z_order`).
+        let mut order: Vec<(u64, i32, u32, u32)> = (0..self.len())
             .map(|s| {
                 let (texel, chart) = key(s);
-                (texel, chart, find(&mut root, s as u32), s as u32)
+                let t = texel as usize;
+                (morton(t % width, t / width), chart, find(&mut root, s as u32), s as u32)
             })
             .collect();
         order.par_sort_unstable();
@@ -245,7 +254,8 @@ impl SurfelLevel {
         }
         let fragments: Vec<Fragment> = order
             .iter()
-            .map(|&(texel, chart, _, s)| {
+            .map(|&(_, chart, _, s)| {
+                let texel = key(s as usize).0;
                 let SurfelPoint { position, area, spread } = self.point[s as usize];
                 Fragment { texel, chart, area, moment: position * area, normal: self.normal[s as usize] * area, spread }
             })
@@ -270,6 +280,27 @@ impl SurfelLevel {
     }
 }
 
+/// Orders the texel sums (in texel order, then chart) along a Z (Morton) curve over their texels,
+/// then chart: every level's surfels are numbered so (`SurfelLevel::coarser` keeps it), so a
+/// ball's surfels lie in few cache lines, where in row order its rows are a level's width apart
+/// (the search is bound by memory latency: the sums took 1.1-1.4x as long).
+fn in_z_order(sums: &mut [Fragment], width: usize) {
+    sums.par_sort_by_cached_key(|f| (morton(f.texel as usize % width, f.texel as usize / width), f.chart));
+}
+
+/// Position of cell `(i, j)` along a Z (Morton) curve.
+pub fn morton(i: usize, j: usize) -> u64 {
+    let spread = |x: usize| {
+        let mut x = x as u64 & 0xffff_ffff;
+        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        (x | (x << 1)) & 0x5555_5555_5555_5555
+    };
+    spread(i) | (spread(j) << 1)
+}
+
 /// The surfel pyramid of one frame; level 0 has the atlas's resolution.
 #[derive(Debug, Clone, Default)]
 pub struct Surfels {
@@ -291,8 +322,7 @@ impl Surfels {
         if cancel::requested() {
             return Self::default();
         }
-        let mut levels = vec![SurfelLevel::finest(width, &sums, &seams, &borders)];
-        drop(sums);
+        let mut levels = vec![SurfelLevel::finest(width, sums, &seams, &borders)];
         while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL && !cancel::requested()) {
             let next = last.coarser();
             levels.push(next);
