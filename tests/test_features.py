@@ -97,8 +97,10 @@ def test_flipping_the_faces_flips_h_k1_k2_and_shape_index_but_not_k():
     mesh = xatlas_icosphere()
     flipped = uvfeat.Mesh(mesh.positions, mesh.faces[:, ::-1], mesh.uvs, mesh.uv_faces[:, ::-1])
     names = ["mean_curvature", "gaussian_curvature", "k1", "k2", "shape_index"]
-    a = uvfeat.compute(mesh, names, radius=0.2, compute_resolution=256)
-    b = uvfeat.compute(flipped, names, radius=0.2, compute_resolution=256)
+    # On the mesh's own atlas for both (by default the flipped copy, a mesh of its own, would be
+    # summed on uvfeat's unwrap of it, another atlas).
+    a = uvfeat.compute(mesh, names, radius=0.2, compute_resolution=256, quadrature="surfels")
+    b = uvfeat.compute(flipped, names, radius=0.2, compute_resolution=256, quadrature="surfels")
     np.testing.assert_allclose(b["mean_curvature"], -a["mean_curvature"], atol=1e-4)
     np.testing.assert_allclose(b["gaussian_curvature"], a["gaussian_curvature"], atol=1e-4)
     np.testing.assert_allclose(b["k1"], -a["k2"], atol=1e-4)
@@ -112,9 +114,12 @@ def test_rigid_motion_changes_nothing_and_scaling_scales_h():
     rotation = rotation @ np.array([[1, 0, 0], [0, 0, -1], [0, 1, 0]])
     moved = uvfeat.Mesh(mesh.positions @ rotation.T + [3.0, -1.0, 7.0], mesh.faces, mesh.uvs, mesh.uv_faces)
     scaled = uvfeat.Mesh(mesh.positions * 3.0, mesh.faces, mesh.uvs, mesh.uv_faces)
-    base = uvfeat.compute(mesh, ["mean_curvature", "gaussian_curvature"], radius=0.15, compute_resolution=256)
-    after = uvfeat.compute(moved, ["mean_curvature", "gaussian_curvature"], radius=0.15, compute_resolution=256)
-    big = uvfeat.compute(scaled, ["mean_curvature", "gaussian_curvature"], radius=0.45, compute_resolution=256)
+    # The same atlas moved (by default the moved copies would be summed on uvfeat's unwrap of them,
+    # whose charts follow the motion only approximately).
+    hk = ["mean_curvature", "gaussian_curvature"]
+    base = uvfeat.compute(mesh, hk, radius=0.15, compute_resolution=256, quadrature="surfels")
+    after = uvfeat.compute(moved, hk, radius=0.15, compute_resolution=256, quadrature="surfels")
+    big = uvfeat.compute(scaled, hk, radius=0.45, compute_resolution=256, quadrature="surfels")
     for name in base:
         assert range_normalised_error(after[name], base[name]) < 1e-3, name
     assert range_normalised_error(big["mean_curvature"] * 3.0, base["mean_curvature"]) < 1e-3

@@ -91,7 +91,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     maps otherwise, or where ``query`` is not the default."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
-    from .options import feature_names, resolve_radius, sums_resolution, vertex_sums_options
+    from .options import feature_names, resolve_radius, sums_mesh, sums_resolution, vertex_sums_options
     from .converged import converged_reference
     from .reference import Reference
 
@@ -113,6 +113,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     named = options if query == DEFAULT_OPTIONS["query"] else {**options, "query": query}
     sums = None if quadrature is not None else vertex_sums_options(mesh, names, named, paper_mode=False)
     if sums is not None:
+        mesh = sums_mesh(mesh, names, named, paper_mode=False)
         resolution = sums_resolution(mesh, radius, resolution)
     atlas = Atlas(mesh, resolution=resolution)
     started = time.perf_counter()

@@ -6,7 +6,7 @@ import numpy as np
 
 from .atlas import Atlas
 from .interop import mesh_source
-from .options import ATLAS_RESOLUTION, surfel_resolution, vertex_sums_options
+from .options import ATLAS_RESOLUTION, sums_mesh, surfel_resolution, vertex_sums_options
 
 
 def compute(mesh, features, radius, *, resolution: int | None = None, precision: str = "f32",
@@ -25,7 +25,9 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     (``quadrature="surfels"``; the pattern's options, ``samples``, ``sampling``, ``margin`` ..., do
     not apply then), unless ``options`` name ``quadrature`` or ``query`` or ask for what the sums do
     not serve (``method="fit"``, ``adaptive``, ``standard_error``, the geodesic methods,
-    ``paper_mode``): then the maps are read. ``resolution`` defaults to 1024 for the maps and, for
+    ``paper_mode``): then the maps are read. The sums run on uvfeat's own atlas even where the mesh
+    has UVs of its own (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the
+    surface into few texels; uvfeat's gives every chart one texel size). ``resolution`` defaults to 1024 for the maps and, for
     the surfel sums, to the smallest grid up to 512 whose finest surfels put about 256 in a ball of
     the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 at 1-4 % of the diagonal on
     a scan's atlas, 256 at 8 %).
@@ -36,7 +38,8 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
         ``(n_vertices,)`` float32 per feature (``(n_radii, n_vertices)`` for a list of radii).
     """
     source = mesh_source(mesh)
-    mesh = source.mesh
+    # The sums at the vertices run on uvfeat's own atlas, whatever the file's UVs (``sums_mesh``).
+    mesh = sums_mesh(source.mesh, features, options, paper_mode)
     if not mesh.has_uvs:
         # Packed for the atlas resolution `load` unwraps at, so that both share the cached unwrap.
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)

@@ -279,21 +279,25 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
     def settings(r):
         return _core_settings(names, r, samples, compute_resolution, adaptive, seed, opts)
 
-    # Per call: the settings (at the largest of the vertices' own radii, which the core reads
-    # instead), the vertices' radii, a label.
+    # Per call: the radius and its settings (at the largest of the vertices' own radii, which the
+    # core reads instead), the vertices' radii, a label.
     if own_radii is not None:
-        calls = [(settings(resolve_radius(float(own_radii.max()), diagonal)), own_radii, OWN_RADII)]
+        largest = resolve_radius(float(own_radii.max()), diagonal)
+        calls = [(largest, settings(largest), own_radii, OWN_RADII)]
     else:
-        calls = [(settings(resolve_radius(r, diagonal)), None, _scale(r)) for r in (radius if stack else [radius])]
-    if not _core.sums_apply(atlas._core, calls[0][0]):
+        calls = [(length, settings(length), None, _scale(r))
+                 for r, length in ((r, resolve_radius(r, diagonal)) for r in (radius if stack else [radius]))]
+    if not _core.sums_apply(atlas._core, calls[0][1]):
         maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
         return {name: feature.per_vertex() for name, feature in maps.items()}, maps[names[0]].vertex_flags()
     if paper_mode:
         warn_paper_mode(stacklevel=5)
     per_radius, truncated, texts = [], [], []
-    for call_settings, radii, label in calls:
-        values, _, border = _core.vertex_feature_values(atlas._core, call_settings, radii)
+    for length, call_settings, radii, label in calls:
+        values, summed, border = _core.vertex_feature_values(atlas._core, call_settings, radii)
+        if radii is None:
+            _fill_empty_balls(atlas.mesh, names, length, values, summed, opts)
         per_radius.append(values)
         truncated.append(border > 0)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
@@ -303,6 +307,28 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
     values = {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
     return values, {"truncated": np.stack(truncated) if stack else truncated[0]}
+
+
+def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summed: np.ndarray, opts: dict) -> None:
+    """Where the ball of a vertex of a face held no surfel, or none beyond the inner exclusion
+    (its atlas texels are longer than the ball there: a sliver chart, UVs squeezed into a few
+    texels), the sums give NaN; ``values`` take the object-space reference's there instead, with
+    the same estimators (on the facets)."""
+    on_faces = np.zeros(mesh.n_vertices, dtype=bool)
+    on_faces[mesh.faces.ravel()] = True
+    unsummed = (np.asarray(summed) == 0) | np.any([np.isnan(v) for v in values], axis=0)
+    empty = np.flatnonzero(unsummed & on_faces)
+    if empty.size == 0:
+        return
+    from .reference import DEFAULT_OPTIONS as REFERENCE_OPTIONS, Reference
+
+    estimators = {name: opts[name] for name in REFERENCE_OPTIONS if name != "method"}
+    with warnings.catch_warnings():
+        # A ball with no other vertex stays NaN, as the reference says of its own calls.
+        warnings.simplefilter("ignore", UserWarning)
+        reference = Reference(mesh).compute(names, radius, vertices=empty, **estimators)
+    for k, name in enumerate(names):
+        values[k][empty] = reference[name]
 
 
 def _scale(radius) -> str:

@@ -126,6 +126,9 @@ class Mesh:
         self._positions = _readonly(positions)
         self._faces = _readonly(faces)
         self.uv_normalization: tuple[float, float, float] | None = None
+        #: The unwrapper of the UVs where :meth:`with_atlas` made them (``"charts"``, ``"xatlas"``),
+        #: None for UVs given with the mesh (or none).
+        self.automatic_atlas: str | None = None
         if uvs is None:
             if uv_faces is not None:
                 raise UVError("uv_faces was given without uvs")
@@ -240,7 +243,7 @@ class Mesh:
         ``method="charts"`` (default) cuts uvfeat's own normal-cone charts (a fraction of a second
         for 100K faces); ``method="xatlas"`` runs xatlas (seconds per 10K faces). Either atlas is
         cached on disk by the mesh's content, so a second call on the same mesh does not unwrap
-        again (``cache=False`` always unwraps).
+        again (``cache=False`` always unwraps). Its :attr:`automatic_atlas` names the unwrapper.
         """
         from .unwrap import UNWRAP_METHODS, chart_uvs, xatlas_uvs
 
@@ -252,14 +255,18 @@ class Mesh:
                                        cache=cache)
         else:
             raise ValueError(f"method must be one of {UNWRAP_METHODS}, got {method!r}")
-        return Mesh(self._positions, self._faces, uvs, uv_faces, name=self.name)
+        mesh = Mesh(self._positions, self._faces, uvs, uv_faces, name=self.name)
+        mesh.automatic_atlas = method
+        return mesh
 
     def with_positions(self, positions) -> "Mesh":
         """The same connectivity and UVs with new positions (a frame of an animation)."""
         positions = _float_rows(positions, 3, "positions")
         if positions.shape != self._positions.shape:
             raise InvalidMeshError(f"new positions have shape {positions.shape}, the mesh has {self._positions.shape}")
-        return Mesh(positions, self._faces, self._uvs, self._uv_faces, name=self.name)
+        mesh = Mesh(positions, self._faces, self._uvs, self._uv_faces, name=self.name)
+        mesh.automatic_atlas = self.automatic_atlas
+        return mesh
 
     def __repr__(self) -> str:
         uv = f"{self.n_charts} charts" if self.has_uvs else "no UVs"

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 import warnings
+import weakref
 
 import numpy as np
 
@@ -81,6 +82,27 @@ def vertex_sums_options(mesh, features, options: dict, paper_mode: bool) -> dict
     if options.get("quadrature") == "surfels" and _integral(options):
         return {}
     return per_vertex_defaults(mesh, features, options, paper_mode) or None
+
+
+_SUMS_MESHES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def sums_mesh(mesh, features, options: dict, paper_mode: bool):
+    """The mesh the surfel sums at the vertices run on where they are the default
+    (:func:`per_vertex_defaults`): ``mesh`` with uvfeat's own atlas (:meth:`~uvfeat.Mesh.with_atlas`,
+    cached on disk; the same vertices and faces) unless its UVs already are one. The values at the
+    vertices do not depend on the UVs, but their accuracy does: a texel's surfel is as long in space
+    as the UVs are compressed there, and a file's atlas packs its charts at any scale (a region
+    given 300x less UV area than the rest held balls of one or no surfel, NaN or 8-19 % off),
+    where uvfeat's charts share one texel size. The atlas is packed for :data:`ATLAS_RESOLUTION`,
+    as :func:`uvfeat.load`'s, whose unwrap it shares on disk (surfels of two charts may share a
+    texel of a coarser grid). Otherwise ``mesh``."""
+    if mesh.automatic_atlas is None and per_vertex_defaults(mesh, features, options, paper_mode):
+        # Kept per mesh (meshes never change), so that calls at several radii build its topology once.
+        if mesh not in _SUMS_MESHES:
+            _SUMS_MESHES[mesh] = mesh.with_atlas(resolution=ATLAS_RESOLUTION)
+        return _SUMS_MESHES[mesh]
+    return mesh
 
 
 def surfel_resolution(mesh, radius) -> int:

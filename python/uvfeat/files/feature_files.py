@@ -17,8 +17,8 @@ from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from .notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
-                       check_resolution, feature_names, parse_radius, resolve_radius, sums_resolution,
-                       vertex_sums_options)
+                       check_resolution, feature_names, parse_radius, resolve_radius, sums_mesh,
+                       sums_resolution, vertex_sums_options)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -120,14 +120,23 @@ class FeatureJob:
                 "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling,
                 "quadrature": self.quadrature or DEFAULT_OPTIONS["quadrature"], "surface": self.surface}
 
+    def _named(self) -> dict:
+        """The options the job names that decide where the per-vertex values come from."""
+        named = {} if self.quadrature is None else {"quadrature": self.quadrature}
+        return named | {"method": self.method, "standard_error": self.standard_error, "adaptive": self.adaptive}
+
     def vertex_options(self, mesh) -> dict | None:
         """The options of ``Atlas.per_vertex`` where the per-vertex values are the surfel sums at
         the vertices, as ``uvfeat.compute`` gives them (by default on an atlas of more than one
         chart, or named with ``quadrature="surfels"``); None where they are read from the maps."""
-        named = {} if self.quadrature is None else {"quadrature": self.quadrature}
-        named |= {"method": self.method, "standard_error": self.standard_error, "adaptive": self.adaptive}
-        added = vertex_sums_options(mesh, self.features, named, self.paper_mode)
+        added = vertex_sums_options(mesh, self.features, self._named(), self.paper_mode)
         return None if added is None else {**self.compute_options(), **added}
+
+    def sums_mesh(self, mesh):
+        """The mesh the sums at the vertices run on, as ``uvfeat.compute``'s
+        (:func:`~uvfeat.options.sums_mesh`): uvfeat's own atlas of ``mesh`` where they are the
+        default, else ``mesh``."""
+        return sums_mesh(mesh, self.features, self._named(), self.paper_mode)
 
     def maps_from_vertices(self, mesh, radius: str) -> bool:
         """Whether the maps of ``radius`` are the values at the vertices interpolated over the faces
@@ -236,24 +245,27 @@ def computed_radii(atlas, job: FeatureJob, advance=lambda description, done=True
 
 def job_atlases(mesh, job: FeatureJob):
     """The atlas of the job's maps and, where the per-vertex values are the surfel sums at the
-    vertices, the atlas and options they take (their own atlas at the surfels' resolution, as
-    ``uvfeat.compute``) for :func:`computed_radii`'s ``at_vertices``, else None; with the
-    rasterisation time of that second atlas (``vertex_rasterisation_s``) where there is one."""
+    vertices, the atlas and options they take (their own atlas at the surfels' resolution, on
+    uvfeat's own UVs by default, as ``uvfeat.compute``) for :func:`computed_radii`'s
+    ``at_vertices``, else None; with the rasterisation time of that second atlas
+    (``vertex_rasterisation_s``) where there is one."""
     from ..atlas import Atlas
 
     vertex_options = job.vertex_options(mesh)
-    vertex_resolution = None if vertex_options is None else job.vertex_resolution(mesh)
+    vertex_mesh = mesh if vertex_options is None else job.sums_mesh(mesh)
+    vertex_resolution = None if vertex_options is None else job.vertex_resolution(vertex_mesh)
     resolution = job.resolution
-    if all(job.maps_from_vertices(mesh, r) for r in job.radii) and vertex_resolution >= job.compute_resolution:
+    if vertex_mesh is mesh and all(job.maps_from_vertices(mesh, r) for r in job.radii) \
+            and vertex_resolution >= job.compute_resolution:
         # The maps are those values interpolated over the faces under their texels: the sums'
-        # atlas serves them when it is as fine as the maps.
+        # atlas serves them when it is the maps' mesh and as fine as the maps.
         resolution = vertex_resolution
     atlas = Atlas(mesh, resolution=resolution, precision="f16" if job.paper_mode else "f32")
     if vertex_options is None:
         return atlas, None, {}
-    if vertex_resolution == resolution:
+    if vertex_mesh is mesh and vertex_resolution == resolution:
         return atlas, (atlas, vertex_options), {}
-    vertex_atlas = Atlas(mesh, resolution=vertex_resolution)
+    vertex_atlas = Atlas(vertex_mesh, resolution=vertex_resolution)
     return atlas, (vertex_atlas, vertex_options), {"vertex_rasterisation_s": vertex_atlas.timings["rasterisation_s"]}
 
 
