@@ -27,10 +27,11 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     not serve (``method="fit"``, ``adaptive``, ``standard_error``, the geodesic methods,
     ``paper_mode``): then the maps are read. The sums run on uvfeat's own atlas even where the mesh
     has UVs of its own (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the
-    surface into few texels; uvfeat's gives every chart one texel size). ``resolution`` defaults to 1024 for the maps and, for
-    the surfel sums, to the smallest grid up to 512 whose finest surfels put about 256 in a ball of
-    the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 at 1-4 % of the diagonal on
-    a scan's atlas, 256 at 8 %).
+    surface into few texels; uvfeat's gives every chart one texel size), and a vertex whose ball
+    holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for
+    the maps and, for the surfel sums, to the smallest grid up to 512 whose finest surfels put about
+    256 in a ball of the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 at 1-4 %
+    of the diagonal on a scan's atlas, 256 at 8 %).
 
     Returns
     -------
