@@ -71,3 +71,20 @@ def test_the_sums_mesh_is_kept_per_mesh_and_an_automatic_atlas_is_its_own():
     # A named quadrature keeps the mesh's own UVs.
     assert sums_mesh(squeezed, HK, {"quadrature": "surfels"}, paper_mode=False) is squeezed
 
+
+
+def test_a_planar_points_shape_index_is_not_a_failed_ball(monkeypatch):
+    # The shape index is NaN where the surface is flat, by design: a cube's faces keep their
+    # surfels, so the reference must not stand in for them.
+    box = trimesh.creation.box(extents=(1, 1, 1)).subdivide().subdivide().subdivide().subdivide()
+    cube = uvfeat.Mesh(box.vertices, box.faces, name="cube").with_atlas(resolution=1024)
+    assert cube.n_charts > 1
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the reference stood in for balls that held surfels")
+
+    monkeypatch.setattr(uvfeat.reference.Reference, "compute", refuse)
+    values = uvfeat.compute(cube, ["shape_index", "mean_curvature"], "5%")
+    flat = np.isnan(values["shape_index"])
+    assert 0.2 < flat.mean() < 0.8  # the faces' middles; the edges and corners bend
+    assert np.isfinite(values["mean_curvature"]).all() and np.max(np.abs(values["mean_curvature"][flat])) < 1e-3

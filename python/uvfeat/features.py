@@ -309,14 +309,22 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
     return values, {"truncated": np.stack(truncated) if stack else truncated[0]}
 
 
+#: Features NaN by design where the sums are whole: the shape index of a planar point.
+NAN_WHERE_FLAT = ("shape_index",)
+
+
 def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summed: np.ndarray, opts: dict) -> None:
     """Where the ball of a vertex of a face held no surfel, or none beyond the inner exclusion
     (its atlas texels are longer than the ball there: a sliver chart, UVs squeezed into a few
     texels), the sums give NaN; ``values`` take the object-space reference's there instead, with
-    the same estimators (on the facets)."""
+    the same estimators (on the facets). A planar point's shape index is NaN by design, not a
+    failed ball."""
     on_faces = np.zeros(mesh.n_vertices, dtype=bool)
     on_faces[mesh.faces.ravel()] = True
-    unsummed = (np.asarray(summed) == 0) | np.any([np.isnan(v) for v in values], axis=0)
+    unsummed = np.asarray(summed) == 0
+    for name, feature in zip(names, values):
+        if name not in NAN_WHERE_FLAT:
+            unsummed |= np.isnan(feature)
     empty = np.flatnonzero(unsummed & on_faces)
     if empty.size == 0:
         return
