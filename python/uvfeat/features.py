@@ -8,6 +8,7 @@ length³ for the sphere volumes; shape index in [-1, 1] (+1 convex cap).
 
 from __future__ import annotations
 
+import functools
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -294,10 +295,12 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
     if paper_mode:
         warn_paper_mode(stacklevel=5)
     per_radius, truncated, texts = [], [], []
+    # Built on the first ball without surfels, then shared by the radii.
+    reference = functools.cache(lambda: _reference_of(atlas.mesh))
     for length, call_settings, radii, label in calls:
         values, summed, border = _core.vertex_feature_values(atlas._core, call_settings, radii)
         if radii is None:
-            _fill_empty_balls(atlas.mesh, names, length, values, summed, opts)
+            _fill_empty_balls(atlas.mesh, reference, names, length, values, summed, opts)
         per_radius.append(values)
         truncated.append(border > 0)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
@@ -313,12 +316,19 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
 NAN_WHERE_FLAT = ("shape_index",)
 
 
-def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summed: np.ndarray, opts: dict) -> None:
+def _reference_of(mesh):
+    from .reference import Reference
+
+    return Reference(mesh)
+
+
+def _fill_empty_balls(mesh, reference, names: list[str], radius: float, values: list, summed: np.ndarray,
+                      opts: dict) -> None:
     """Where the ball of a vertex of a face held no surfel, or none beyond the inner exclusion
     (its atlas texels are longer than the ball there: a sliver chart, UVs squeezed into a few
     texels), the sums give NaN; ``values`` take the object-space reference's there instead, with
-    the same estimators (on the facets). A planar point's shape index is NaN by design, not a
-    failed ball."""
+    the same estimators (on the facets; ``reference()`` gives the mesh's :class:`Reference`). A
+    planar point's shape index is NaN by design, not a failed ball."""
     on_faces = np.zeros(mesh.n_vertices, dtype=bool)
     on_faces[mesh.faces.ravel()] = True
     unsummed = np.asarray(summed) == 0
@@ -328,15 +338,15 @@ def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summe
     empty = np.flatnonzero(unsummed & on_faces)
     if empty.size == 0:
         return
-    from .reference import DEFAULT_OPTIONS as REFERENCE_OPTIONS, Reference
+    from .reference import DEFAULT_OPTIONS as REFERENCE_OPTIONS
 
     estimators = {name: opts[name] for name in REFERENCE_OPTIONS if name != "method"}
     with warnings.catch_warnings():
         # A ball with no other vertex stays NaN, as the reference says of its own calls.
         warnings.simplefilter("ignore", UserWarning)
-        reference = Reference(mesh).compute(names, radius, vertices=empty, **estimators)
+        filled = reference().compute(names, radius, vertices=empty, **estimators)
     for k, name in enumerate(names):
-        values[k][empty] = reference[name]
+        values[k][empty] = filled[name]
 
 
 def _scale(radius) -> str:
