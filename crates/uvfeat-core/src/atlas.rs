@@ -96,7 +96,7 @@ impl Atlas {
     /// `quadrature = "surfels"`. A build stopped part way ([`cancel`]) is not kept: the call gives
     /// an empty pyramid, and the next builds it whole.
     pub fn surfels(&self, surface: Surface) -> &Surfels {
-        static NONE: Surfels = Surfels { levels: Vec::new(), texel_side: 0.0 };
+        static NONE: Surfels = Surfels { levels: Vec::new() };
         let cell = &self.surfels[usize::from(surface == Surface::Smooth)];
         if let Some(surfels) = cell.get() {
             return surfels;

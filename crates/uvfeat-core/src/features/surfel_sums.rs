@@ -9,7 +9,7 @@
 //!
 //! The search runs over the level's adjacency from the centre's surfel while the centroids are
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
-//! and the object-space reference's; a linear ramp half a surfel wide weighs a plane's disk exactly.
+//! and the object-space reference's; a linear ramp one surfel wide weighs a plane's disk exactly.
 
 use super::{NeighbourhoodStats, StatsSettings, WeightedSums};
 use crate::atlas::Atlas;
@@ -30,6 +30,10 @@ pub struct SurfelCentre {
     pub uv: DVec2,
     /// Chart of `uv`.
     pub chart: i32,
+    /// Object length of one texel of the atlas at `p` along its longer side (the largest
+    /// singular value of the parametrisation over `W`): a stretched chart's surfels, longer than
+    /// wide, take a finer level, as the flat quadrature's.
+    pub texel_length: f64,
     /// Object length of one texel's side for its area: `sqrt(sigma_1 sigma_2) / W` (the ramp's
     /// width, as the flat quadrature's).
     pub texel_side: f64,
@@ -47,7 +51,14 @@ impl SurfelCentre {
         resolution: usize,
     ) -> Self {
         let w = resolution as f64;
-        Self { position, normal, uv, chart, texel_side: distortion.area_element().sqrt() / w }
+        Self {
+            position,
+            normal,
+            uv,
+            chart,
+            texel_length: distortion.sigma1 / w,
+            texel_side: distortion.area_element().sqrt() / w,
+        }
     }
 }
 
@@ -74,7 +85,8 @@ pub fn surfel_sums(
     let surfels = atlas.surfels(settings.surface);
     let mut sums = BallSums::default();
     let r = settings.stats.radius;
-    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), centre.texel_side, r) else {
+    let texels = (centre.texel_length, centre.texel_side);
+    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r) else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
     let (inner, outer) = search.ramp;
@@ -100,7 +112,7 @@ pub fn surfel_sums(
 struct Ball {
     p: DVec3,
     n: DVec3,
-    /// The ramp's weight falls from 1 half a surfel width inside `outer` to 0 at `outer`.
+    /// The ramp's weight falls from 1 one surfel width inside `outer` to 0 at `outer`.
     outer: f64,
     /// `1 / width` of the ramp.
     inverse_ramp: f64,
@@ -187,10 +199,6 @@ impl Ball {
             // when both are read by the same rule: `w = dA rho^2 / r^2` at the centroid, not with
             // the spread (the 18-chart torus's K: 0.98 % of its range with it, 0.4 % without).
             // With `k = -2 h / rho^2`: `w k = -2 dA h / r^2`, `w k^2 = 4 dA h^2 / (r^2 rho^2)`.
-            // A coarse surfel's centroid sags below a curved surface, which makes `k` too large
-            // (the unit sphere's K 1.3 % at r = 0.5); read at its finest surfels' centroids the
-            // sphere's is exact, but the scans' K moved 0.1-0.3 % of its range further from the
-            // converged reference on their facets at r = 4-8 %.
             sums.curvature.0 += area * distance2 * self.inverse_r2;
             sums.curvature.1 += -2.0 * elevation * self.inverse_r2;
             sums.curvature.2 += 4.0 * elevation * height * self.inverse_r2 * inverse_distance2;

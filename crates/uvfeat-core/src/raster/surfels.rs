@@ -3,20 +3,15 @@
 //! (each face's UV triangle clipped to the texel's square), as its 3D area, centroid and mean
 //! normal. The surfels partition the surface: each surface point belongs to exactly one, whatever
 //! the charts, seams or distortion, which is what a neighbourhood that counts surface once needs.
-//! At the finest level, surfels of one chart in side-adjacent texels are adjacent (parts of a chart
-//! closer than a texel in UV are joined), and seams join the surfels on their two sides.
 //!
-//! A pyramid merges the surfels level by level, so that a neighbourhood of any radius can be summed
-//! over a few hundred of them. Level `k >= 1` groups the surface in cubes of `2^k` mean texel sides
-//! ([`Surfels::cell`]): a coarse surfel is one *connected* piece of the surface in its cube whose
-//! finer surfels face the same way (their normals' largest component, with its sign), and coarse
-//! surfels are adjacent where their finer pieces are. Grouped in space rather than in texels, a
-//! coarse surfel crosses seams: a scan's atlas of a thousand small charts would otherwise leave a
-//! piece of every chart at every level (three times the target in a ball at r = 4-8 %), and a
-//! chart packed at a smaller scale would keep its tiny texels. Facing one way, a coarse surfel never
-//! folds over the rim of a part thinner than its cube (whose normals would cancel).
+//! A pyramid merges 2 x 2 texels per level, so that a neighbourhood of any radius can be summed
+//! over a few hundred surfels. A coarse surfel is one *connected* piece of a chart in its texel:
+//! two arms of a chart that meet in a coarse texel, or the two sides of a slit, stay apart (when
+//! at least a finest texel apart), and coarse surfels are adjacent where their finer pieces are. At
+//! the finest level, surfels of one chart in side-adjacent texels are adjacent (parts of a chart
+//! closer than a texel in UV are joined), and seams join the surfels on their two sides.
 
-use super::morton::{morton, morton3};
+use super::morton::morton;
 use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints};
 use crate::cancel;
 use crate::frame::Frame;
@@ -35,8 +30,8 @@ pub enum Surface {
     Facets,
 }
 
-/// Levels at most (cubes `2^MOST_LEVELS` texels wide span any atlas's surface).
-const MOST_LEVELS: usize = 24;
+/// The coarsest level has at most this many texels per side.
+const SMALLEST_LEVEL: usize = 4;
 
 /// Where a surfel is, how much surface it holds and how that surface spreads.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,11 +48,11 @@ pub struct SurfelPoint {
 /// The surfels of one level of the pyramid.
 #[derive(Debug, Clone, Default)]
 pub struct SurfelLevel {
-    /// Finest level only (0 above): texels per side.
+    /// Texels per side.
     pub width: usize,
-    /// Finest level only (empty above): texel `j * width + i` of each surfel.
+    /// Texel `j * width + i` of each surfel.
     pub texel: Vec<u32>,
-    /// Finest level only (empty above): chart of each surfel.
+    /// Chart of each surfel.
     pub chart: Vec<i32>,
     /// Area centroid and 3D area (together: the search reads both of every surfel it reaches).
     pub point: Vec<SurfelPoint>,
@@ -78,15 +73,15 @@ pub struct SurfelLevel {
 impl SurfelLevel {
     /// Number of surfels.
     pub fn len(&self) -> usize {
-        self.point.len()
+        self.chart.len()
     }
 
     /// `true` when the level holds no surfel.
     pub fn is_empty(&self) -> bool {
-        self.point.is_empty()
+        self.chart.is_empty()
     }
 
-    /// Finest level only: texel `(i, j)` of surfel `s`.
+    /// Texel `(i, j)` of surfel `s`.
     pub fn texel(&self, s: u32) -> (i64, i64) {
         let t = self.texel[s as usize] as usize;
         ((t % self.width) as i64, (t / self.width) as i64)
@@ -124,10 +119,8 @@ impl SurfelLevel {
     /// across texel sides and across the seams.
     fn finest(width: usize, mut sums: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Self {
         in_z_order(&mut sums, width);
-        let mut level = Self::summed(sums.len(), sums.iter().enumerate().map(|(s, &f)| (s as u32, f)));
-        level.width = width;
-        level.texel = sums.iter().map(|s| s.texel).collect();
-        level.chart = sums.iter().map(|s| s.chart).collect();
+        let owner: Vec<u32> = (0..sums.len() as u32).collect();
+        let mut level = Self::summed(width, &sums, &owner);
         level.index_texels();
         let (pairs, on_border) = {
             let level = &level;
@@ -151,13 +144,20 @@ impl SurfelLevel {
         level
     }
 
-    /// `n` surfels from fragments `(owner, fragment)`, in the order given.
-    fn summed(n: usize, fragments: impl Iterator<Item = (u32, Fragment)>) -> Self {
+    /// Surfels from fragments grouped by `owner` (consecutive ids from 0, in texel order).
+    fn summed(width: usize, fragments: &[Fragment], owner: &[u32]) -> Self {
+        let n = owner.last().map_or(0, |&o| o as usize + 1);
         let mut sums = vec![Fragment::empty(0, -1); n];
-        for (o, f) in fragments {
-            sums[o as usize].absorb(&f);
+        for (f, &o) in fragments.iter().zip(owner) {
+            let sum = &mut sums[o as usize];
+            sum.texel = f.texel;
+            sum.chart = f.chart;
+            sum.absorb(f);
         }
         Self {
+            width,
+            texel: sums.iter().map(|s| s.texel).collect(),
+            chart: sums.iter().map(|s| s.chart).collect(),
             point: sums
                 .iter()
                 .map(|s| SurfelPoint { position: s.centroid(), area: s.area, spread: s.spread })
@@ -214,16 +214,16 @@ impl SurfelLevel {
         }
     }
 
-    /// The next level up, of cubes of side `cell` from `origin`: in each cube, the surfels facing
-    /// one way joined by adjacency form one surfel, numbered along a 3D Z curve of the cubes; sets
-    /// `self.parent`.
-    fn coarser(&mut self, origin: DVec3, cell: f64) -> Self {
-        let cube = |s: usize| {
-            let at = ((self.point[s].position - origin) / cell).max(DVec3::ZERO);
-            morton3(at.x as usize, at.y as usize, at.z as usize)
+    /// The next level up: in each 2 x 2 block of texels, the surfels of one chart joined by
+    /// adjacency form one surfel; sets `self.parent`.
+    fn coarser(&mut self) -> Self {
+        let width = self.width.div_ceil(2);
+        let up = |t: u32| {
+            let (i, j) = (t as usize % self.width, t as usize / self.width);
+            ((j / 2) * width + i / 2) as u32
         };
-        let keys: Vec<(u64, u8)> = (0..self.len()).into_par_iter().map(|s| (cube(s), facing(self.normal[s]))).collect();
-        // Union-find over the surfels, joining adjacent ones of the same cube and facing.
+        let key = |s: usize| (up(self.texel[s]), self.chart[s]);
+        // Union-find over the surfels, joining adjacent ones of the same block and chart.
         let mut root: Vec<u32> = (0..self.len() as u32).collect();
         fn find(root: &mut [u32], mut s: u32) -> u32 {
             while root[s as usize] != s {
@@ -234,34 +234,38 @@ impl SurfelLevel {
         }
         for s in 0..self.len() {
             for &t in self.neighbours(s as u32) {
-                if keys[s] == keys[t as usize] {
+                if key(s) == key(t as usize) {
                     let (a, b) = (find(&mut root, s as u32), find(&mut root, t));
                     root[a.max(b) as usize] = a.min(b);
                 }
             }
         }
-        let roots: Vec<u32> = (0..self.len() as u32).map(|s| find(&mut root, s)).collect();
-        // The pieces numbered along the 3D Z curve of their cubes: only the roots are sorted, and
-        // the surfels are summed in their own order (sorting all of them and reading them in the
-        // cubes' order took a third of the level's time).
-        let mut pieces: Vec<(u64, u8, u32)> = (0..self.len() as u32)
-            .filter(|&s| roots[s as usize] == s)
-            .map(|s| (keys[s as usize].0, keys[s as usize].1, s))
+        // In Z order of the texels, as the finest level (`in_z_order`).
+        let mut order: Vec<(u64, i32, u32, u32)> = (0..self.len())
+            .map(|s| {
+                let (texel, chart) = key(s);
+                let t = texel as usize;
+                (morton(t % width, t / width), chart, find(&mut root, s as u32), s as u32)
+            })
             .collect();
-        pieces.par_sort_unstable();
-        let mut piece_of_root = root;
-        for (o, &(.., s)) in pieces.iter().enumerate() {
-            piece_of_root[s as usize] = o as u32;
+        order.par_sort_unstable();
+        let mut owner = vec![0u32; order.len()];
+        for k in 1..order.len() {
+            owner[k] = owner[k - 1] + u32::from(order[k].2 != order[k - 1].2);
         }
-        self.parent = roots.iter().map(|&r| piece_of_root[r as usize]).collect();
-        let parts = (0..self.len()).map(|s| {
-            let SurfelPoint { position, area, spread } = self.point[s];
-            let normal = self.normal[s] * area;
-            (self.parent[s], Fragment { texel: 0, chart: -1, area, moment: position * area, normal, spread })
-        });
-        let mut next = Self::summed(pieces.len(), parts);
-        for (s, &o) in self.parent.iter().enumerate() {
-            next.on_border[o as usize] |= self.on_border[s];
+        let fragments: Vec<Fragment> = order
+            .iter()
+            .map(|&(_, chart, _, s)| {
+                let texel = key(s as usize).0;
+                let SurfelPoint { position, area, spread } = self.point[s as usize];
+                Fragment { texel, chart, area, moment: position * area, normal: self.normal[s as usize] * area, spread }
+            })
+            .collect();
+        let mut next = Self::summed(width, &fragments, &owner);
+        self.parent = vec![0; self.len()];
+        for (&(.., s), &o) in order.iter().zip(&owner) {
+            self.parent[s as usize] = o;
+            next.on_border[o as usize] |= self.on_border[s as usize];
         }
         // Each link once (adjacency lists hold both directions) and only between parents: a
         // quarter of the pairs to sort (level 0 -> 1 of the 100K-face dragon at 512²: 41-49 ms before).
@@ -277,31 +281,6 @@ impl SurfelLevel {
     }
 }
 
-/// Which way unit normal `n` faces: its largest component's axis and sign (0-5).
-fn facing(n: DVec3) -> u8 {
-    let a = n.abs();
-    let axis = if a.x >= a.y && a.x >= a.z {
-        0
-    } else if a.y >= a.z {
-        1
-    } else {
-        2
-    };
-    2 * axis as u8 + u8::from(n[axis] < 0.0)
-}
-
-/// The UV area of the faces on the charts.
-fn uv_area(topology: &Topology) -> f64 {
-    (0..topology.faces.len())
-        .into_par_iter()
-        .filter(|&f| topology.face_chart[f] >= 0)
-        .map(|f| {
-            let [a, b, c] = topology.corner_uvs(f);
-            0.5 * (b - a).perp_dot(c - a).abs()
-        })
-        .sum()
-}
-
 /// Orders the texel sums (in texel order, then chart) along a Z (Morton) curve over their texels,
 /// then chart: every level's surfels are numbered so (`SurfelLevel::coarser` keeps it), so a
 /// ball's surfels lie in few cache lines, where in row order its rows are a level's width apart
@@ -313,11 +292,8 @@ fn in_z_order(sums: &mut [Fragment], width: usize) {
 /// The surfel pyramid of one frame; level 0 has the atlas's resolution.
 #[derive(Debug, Clone, Default)]
 pub struct Surfels {
-    /// Finest first: level 0 in texels, level `k >= 1` in cubes of side [`Surfels::cell`]`(k)`.
+    /// Finest first; level `k` has `ceil(W / 2^k)` texels per side.
     pub levels: Vec<SurfelLevel>,
-    /// Object length of a texel's side at the atlas's mean scale: `sqrt(A / A_uv) / W` for the
-    /// surface's area `A` on the charts' UV area `A_uv`.
-    pub texel_side: f64,
 }
 
 impl Surfels {
@@ -334,34 +310,12 @@ impl Surfels {
         if cancel::requested() {
             return Self::default();
         }
-        let finest = SurfelLevel::finest(width, sums, &seams, &borders);
-        let area: f64 = finest.point.iter().map(|p| p.area).sum();
-        let texel_side = (area / uv_area(topology)).sqrt() / width as f64;
-        let (lo, hi) = finest
-            .point
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p.position), hi.max(p.position)));
-        let mut surfels = Self { levels: vec![finest], texel_side };
-        // Up to the level whose cubes span the surface (a level of one surfel per facing, at most).
-        while surfels.levels.len() < MOST_LEVELS
-            && surfels.cell(surfels.levels.len() - 1) < (hi - lo).max_element()
-            && !cancel::requested()
-        {
-            let cell = surfels.cell(surfels.levels.len());
-            let next = surfels.levels.last_mut().expect("the finest level").coarser(lo, cell);
-            surfels.levels.push(next);
+        let mut levels = vec![SurfelLevel::finest(width, sums, &seams, &borders)];
+        while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL && !cancel::requested()) {
+            let next = last.coarser();
+            levels.push(next);
         }
-        surfels
-    }
-
-    /// Side of level `level`'s cubes, `2^level` texel sides ([`Surfels::texel_side`]); 0 at the
-    /// finest level, whose surfels are texels.
-    pub fn cell(&self, level: usize) -> f64 {
-        if level == 0 {
-            0.0
-        } else {
-            self.texel_side * (1u64 << level) as f64
-        }
+        Self { levels }
     }
 
     /// The surfel of `level` that holds the finest surfel `s`.

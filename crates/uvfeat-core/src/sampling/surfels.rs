@@ -9,7 +9,7 @@
 //! seams while inside the ball, as the object-space reference's search over edges does.
 //!
 //! The level of the pyramid is the coarsest whose ball holds about [`TARGET_SURFELS`], so the cost
-//! does not grow with the radius. A surfel's weight ramps linearly over half a surfel width across
+//! does not grow with the radius. A surfel's weight ramps linearly over one surfel width across
 //! the ball's edge, centred so that a plane's disk weighs exactly `pi r^2` (as the shared lattice's
 //! ramp, DESIGN.md §1.4.7).
 //!
@@ -31,13 +31,6 @@ use std::cell::RefCell;
 /// cost of a ball, and its quadrature error, which is a few tenths of a percent of H's range on the
 /// shared scans at 256 (halving it from 512 halved the cost at r = 4-8 % and added up to 0.2 %).
 const TARGET_SURFELS: f64 = 256.0;
-
-/// The ramp's width across the ball's edge, in surfel sides. A wider ramp blurs the ball (its bias
-/// grows with the width squared), a narrower one leaves more of the edge to whole surfels (noise);
-/// on the shared scans half a side cut H's error against the converged reference by up to a third
-/// at r = 2-8 % (a quarter and one side both did worse), and changed the small meshes' by 0.05 % at
-/// most.
-const RAMP_WIDTH: f64 = 0.5;
 
 /// The coarsest surfel grid [`surfel_grid_width`] gives: below it a chart of a scan's atlas spans
 /// few texels.
@@ -66,18 +59,16 @@ thread_local! {
     static REACHED: RefCell<(Stamps, Vec<u32>)> = RefCell::new((Stamps::new(0), Vec::new()));
 }
 
-/// The pyramid level whose surfels put about `target` in the ball: level `k`'s cubes are `2^k`
-/// mean texel sides (`texel_side`) wide, and as many squares of side `c` fill the ball `target`
-/// times when `c = r sqrt(pi / target)`. Where a chart's texels are longer than the mean, the
-/// cubes hold its finest surfels whole, so those stay the ball's surfels until the cubes outgrow
-/// them.
-fn surfel_level(n_levels: usize, texel_side: f64, radius: f64, target: f64) -> usize {
-    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_side;
-    let level = scale.log2().round();
-    if !(level > 0.0) {
-        return 0;
-    }
-    (level as usize).min(n_levels.saturating_sub(1))
+/// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about `target` in
+/// the ball where a finest surfel is up to `texel_length` long (`sigma_1 / W`).
+fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
+    // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
+    // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
+    // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
+    // surface) takes a finer level.
+    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_length;
+    let widest = scale.log2().round();
+    (widest.max(0.0) as usize).min(n_levels.saturating_sub(1))
 }
 
 /// The centre the surfels of `surface` are measured from: `centre` itself on the smooth surface,
@@ -105,8 +96,9 @@ pub fn gather_surfels(
 ) -> SampleCounts {
     let surfels = atlas.surfels(settings.surface);
     let mut counts = SampleCounts::default();
-    let texel_side = centre.distortion.area_element().sqrt() / atlas.resolution() as f64;
-    let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texel_side, settings.radius) else {
+    let w = atlas.resolution() as f64;
+    let texels = (centre.distortion.sigma1 / w, centre.distortion.area_element().sqrt() / w);
+    let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, settings.radius) else {
         return counts;
     };
     let level = &surfels.levels[ball.level];
@@ -145,30 +137,28 @@ pub struct SurfelBall {
     pub level: usize,
     /// The surfel of that level holding the centre.
     pub start: u32,
-    /// Weights fall linearly from 1 at `ramp.0` to 0 at `ramp.1`: half a surfel wide ([`RAMP_WIDTH`]), centred so
+    /// Weights fall linearly from 1 at `ramp.0` to 0 at `ramp.1`: one surfel wide, centred so
     /// that a plane's disk weighs exactly `pi r^2`.
     pub ramp: (f64, f64),
 }
 
 impl SurfelBall {
-    /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is
-    /// `texel_side` on the side of its area (`sqrt(sigma_1 sigma_2) / W`). `None` where neither
-    /// the point's texel nor its eight neighbours hold a surfel of its chart (the centre of a
-    /// gutter texel lies just off its chart).
+    /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is up to
+    /// `texels.0` long and `texels.1` on the side of its area (`sigma_1 / W`, `sqrt(sigma_1
+    /// sigma_2) / W`). `None` where neither the point's texel nor its eight neighbours hold a
+    /// surfel of its chart (the centre of a gutter texel lies just off its chart).
     pub fn new(
         atlas: &Atlas,
         surfels: &Surfels,
         (uv, chart): (DVec2, i32),
-        texel_side: f64,
+        texels: (f64, f64),
         radius: f64,
     ) -> Option<Self> {
         let finest = surfels.levels.first()?;
         let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
-        let level = surfel_level(surfels.levels.len(), surfels.texel_side, radius, TARGET_SURFELS);
+        let level = surfel_level(surfels.levels.len(), texels.0, radius, TARGET_SURFELS);
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
-        // A surfel is a texel of the centre's chart, or a cube (holding such texels whole where
-        // they are larger).
-        let width = (RAMP_WIDTH * texel_side.max(surfels.cell(level))).min(0.5 * radius);
+        let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
         let edge = radius * ramp_centre(width / radius);
         Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0) })
     }

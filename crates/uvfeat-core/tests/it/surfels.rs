@@ -34,9 +34,8 @@ fn vertex_errors(values: &[Vec<f32>]) -> [f64; 2] {
 #[test]
 fn values_at_the_vertices_meet_the_analytic_sphere_across_rotated_seams() {
     let atlas = atlas(&patchwork_sphere(4), 512);
-    // Measured: smooth 0.01 % / 1.3 % (a coarse surfel's centroid sags inside the sphere); facets,
-    // whose chords sit inside it too, 0.9 % / 3.0 %.
-    for (surface, [h_bound, k_bound]) in [(Surface::Smooth, [0.002, 0.02]), (Surface::Facets, [0.015, 0.035])] {
+    // Measured: smooth 0.01 % / 0.6 %; facets, whose chords sit inside the sphere, 0.9 % / 2.4 %.
+    for (surface, [h_bound, k_bound]) in [(Surface::Smooth, [0.002, 0.012]), (Surface::Facets, [0.015, 0.035])] {
         let mut s = settings(0.5);
         s.surface = surface;
         let VertexValues { values, counts } = vertex_values(&atlas, &s).unwrap();
