@@ -9,13 +9,16 @@
 //!
 //! The search runs over the level's adjacency from the centre's surfel while the centroids are
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
-//! and the object-space reference's; a linear ramp one surfel wide weighs a plane's disk exactly.
+//! and the object-space reference's. A linear ramp one surfel wide across the ball's edge weighs
+//! the estimators' moments, centred so that their ratios see a sharp ball's
+//! ([`moment_ramp_centre`]: every estimator the sums feed is a ratio of them), and the area,
+//! centred so that a plane's disk weighs `pi r^2` exactly (the area ratio the maps report).
 
 use super::{NeighbourhoodStats, StatsSettings, WeightedSums};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
-use crate::sampling::{SampleCounts, SurfelBall};
+use crate::sampling::{moment_ramp_centre, SampleCounts, SurfelBall};
 use glam::{DVec2, DVec3};
 
 /// Where a neighbourhood is centred: a surface point, its unit normal, where it lies in the atlas
@@ -89,12 +92,15 @@ pub fn surfel_sums(
     let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r) else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
-    let (inner, outer) = search.ramp;
+    // The search's ramp is centred for the area; the moments' is a little inside it.
+    let (inner, area_outer) = search.ramp;
+    let width = area_outer - inner;
     let ball = Ball {
         p: centre.position,
         n: centre.normal,
-        outer,
-        inverse_ramp: 1.0 / (outer - inner),
+        outer: r * moment_ramp_centre(width / r) + width / 2.0,
+        area_outer,
+        inverse_ramp: 1.0 / width,
         inverse_r2: 1.0 / (r * r),
         r,
         rho_min: settings.stats.rho_min,
@@ -112,8 +118,10 @@ pub fn surfel_sums(
 struct Ball {
     p: DVec3,
     n: DVec3,
-    /// The ramp's weight falls from 1 one surfel width inside `outer` to 0 at `outer`.
+    /// The moments' ramp falls from 1 one surfel width inside `outer` to 0 at `outer`.
     outer: f64,
+    /// The area's ramp (as wide) ends at `area_outer`.
+    area_outer: f64,
     /// `1 / width` of the ramp.
     inverse_ramp: f64,
     /// `1 / r^2`.
@@ -133,7 +141,7 @@ struct BallSums {
     elevation: (f64, f64),
     /// `sum dA |q - p|^2` and `sum dA rho |q - p|^2`.
     radial: (f64, f64),
-    /// `sum dA`.
+    /// `sum dA` under the area's ramp.
     area: f64,
     /// `sum w`, `sum w k`, `sum w k^2` of the curvature moments (`w = dA rho^2 / r^2`).
     curvature: (f64, f64, f64),
@@ -164,8 +172,9 @@ impl Ball {
     /// normal's bending integrand `WITH_NORMALS`).
     #[inline]
     fn add<const WITH_NORMALS: bool>(&self, sums: &mut BallSums, level: &SurfelLevel, s: u32, distance: f64) {
-        let weight = ((self.outer - distance) * self.inverse_ramp).min(1.0);
         let SurfelPoint { position, area, spread } = level.point[s as usize];
+        sums.area += area * ((self.area_outer - distance) * self.inverse_ramp).clamp(0.0, 1.0);
+        let weight = ((self.outer - distance) * self.inverse_ramp).min(1.0);
         let (area, spread) = (area * weight, spread * weight);
         if !(area > 0.0) {
             return;
@@ -187,7 +196,6 @@ impl Ball {
         sums.elevation.1 += elevation * height * distance * inverse_distance2;
         sums.radial.0 += second;
         sums.radial.1 += second * distance;
-        sums.area += area;
         if distance >= self.rho_min {
             if WITH_NORMALS {
                 let g = (self.n - level.normal[s as usize]).length_squared() * inverse_distance2;

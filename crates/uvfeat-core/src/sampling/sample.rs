@@ -77,6 +77,18 @@ pub fn ramp_centre(width: f64) -> f64 {
     (1.0 - width * width / 12.0).sqrt()
 }
 
+/// Where a linear ramp `width` wide across the ball's edge (both in units of `r`) is centred so
+/// that its area moments of `rho^4` and `rho^2` stand in a disk's ratio, `2 r^2 / 3`. The ratio
+/// estimators (`H = -2 sum dA h / sum dA rho^2`, K's moments, the volumes) read their `O(r^2)`
+/// term through that ratio, which a ramp centred for the area ([`ramp_centre`]) raises by `2
+/// width^2 / 3` (a ball blurred outwards, read as a larger one); centred at `sqrt(1 - 3 width^2 /
+/// 4)` it is kept to `O(width^4)`, and the disk weighs `pi (1 - 2 width^2 / 3)`, which no ratio
+/// reads. (A ramp centred at `c` has moments `((c + w/2)^(k+3) - (c - w/2)^(k+3)) / ((k+2)(k+3)
+/// w)`, so the ratio is `2/3 (c^2 + 3 w^2 / 4) + O(w^4)`.)
+pub fn moment_ramp_centre(width: f64) -> f64 {
+    (1.0 - 0.75 * width * width).sqrt()
+}
+
 /// A surface point reached by one pattern sample, before the ball test.
 pub struct Candidate {
     /// The surface point `q`.
@@ -130,4 +142,27 @@ pub fn accept(
         pattern_index: candidate.pattern_index,
     });
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `integral rho^k w(rho) rho d rho` of a linear ramp from 1 at `c - w/2` to 0 at `c + w/2`.
+    fn moment(k: i32, c: f64, w: f64) -> f64 {
+        ((c + w / 2.0).powi(k + 3) - (c - w / 2.0).powi(k + 3)) / (f64::from((k + 2) * (k + 3)) * w)
+    }
+
+    #[test]
+    fn each_ramp_keeps_its_disk_moment() {
+        for w in [0.05, 0.1, 0.3] {
+            // The area's: a unit disk's pi exactly.
+            assert!((moment(0, ramp_centre(w), w) / 0.5 - 1.0).abs() < 1e-12, "w = {w}");
+            // The moments': rho^4 over rho^2 as the disk's 2/3, to O(w^4); the area's ramp is off by
+            // 2 w^2 / 3 (the moment a wrong centring would break).
+            let ratio = |c: f64| moment(4, c, w) / moment(2, c, w) / (2.0 / 3.0) - 1.0;
+            assert!(ratio(moment_ramp_centre(w)).abs() < 2.0 * w.powi(4), "w = {w}: {}", ratio(moment_ramp_centre(w)));
+            assert!((ratio(ramp_centre(w)) / (2.0 * w * w / 3.0) - 1.0).abs() < 0.1, "w = {w}");
+        }
+    }
 }
