@@ -10,9 +10,9 @@
 //! The search runs over the level's adjacency from the centre's surfel while the centroids are
 //! inside the ball, so the neighbourhood is the ball's connected part, as the flat quadrature's
 //! and the object-space reference's. A linear ramp one surfel wide across the ball's edge weighs
-//! the estimators' moments, centred so that their ratios see a sharp ball's
-//! ([`moment_ramp_centre`]: every estimator the sums feed is a ratio of them), and the area,
-//! centred so that a plane's disk weighs `pi r^2` exactly (the area ratio the maps report).
+//! the surfels, centred so that the estimators' ratios see a sharp ball's moments
+//! ([`moment_ramp_centre`]: every estimator the sums feed is a ratio of them); the area ratio the
+//! maps report is read against the area that ramp gives a plane's disk.
 
 use super::{NeighbourhoodStats, StatsSettings, WeightedSums};
 use crate::atlas::Atlas;
@@ -92,14 +92,14 @@ pub fn surfel_sums(
     let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r) else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
-    // The search's ramp is centred for the area; the moments' is a little inside it.
-    let (inner, area_outer) = search.ramp;
-    let width = area_outer - inner;
+    // The flat quadrature's ramp is centred for the area; the sums' as wide, for the moments.
+    let width = search.ramp.1 - search.ramp.0;
+    let edge = r * moment_ramp_centre(width / r);
+    let search = SurfelBall { ramp: (edge - width / 2.0, edge + width / 2.0), ..search };
     let ball = Ball {
         p: centre.position,
         n: centre.normal,
-        outer: r * moment_ramp_centre(width / r) + width / 2.0,
-        area_outer,
+        outer: search.ramp.1,
         inverse_ramp: 1.0 / width,
         inverse_r2: 1.0 / (r * r),
         r,
@@ -111,7 +111,9 @@ pub fn surfel_sums(
     } else {
         search.search(level, centre.position, |s, distance| ball.add::<false>(&mut sums, level, s, distance));
     }
-    (sums.stats(r), sums.counts)
+    // The moments' ramp weighs a plane's disk `pi (r^2 - 2 w^2 / 3)`: the area ratio is read
+    // against that.
+    (sums.stats(r, r * r / (r * r - 2.0 * width * width / 3.0)), sums.counts)
 }
 
 /// The ball and its ramp, seen from the centre.
@@ -120,8 +122,6 @@ struct Ball {
     n: DVec3,
     /// The moments' ramp falls from 1 one surfel width inside `outer` to 0 at `outer`.
     outer: f64,
-    /// The area's ramp (as wide) ends at `area_outer`.
-    area_outer: f64,
     /// `1 / width` of the ramp.
     inverse_ramp: f64,
     /// `1 / r^2`.
@@ -141,7 +141,7 @@ struct BallSums {
     elevation: (f64, f64),
     /// `sum dA |q - p|^2` and `sum dA rho |q - p|^2`.
     radial: (f64, f64),
-    /// `sum dA` under the area's ramp.
+    /// `sum dA`.
     area: f64,
     /// `sum w`, `sum w k`, `sum w k^2` of the curvature moments (`w = dA rho^2 / r^2`).
     curvature: (f64, f64, f64),
@@ -151,8 +151,8 @@ struct BallSums {
 }
 
 impl BallSums {
-    /// The sums as the estimators read them (`w2` left 0).
-    fn stats(&self, r: f64) -> NeighbourhoodStats {
+    /// The sums as the estimators read them (`w2` left 0), the area scaled by `area_scale`.
+    fn stats(&self, r: f64, area_scale: f64) -> NeighbourhoodStats {
         let inverse_r = 1.0 / r;
         let sums = |w, wg, wg2| WeightedSums { w, w2: 0.0, wg, wg2 };
         NeighbourhoodStats {
@@ -162,7 +162,7 @@ impl BallSums {
             normal_curvature: sums(self.curvature.0, self.curvature.1, self.curvature.2),
             // The area alone (the area ratio): the surfels serve the Euclidean ball only, never the
             // geodesic-disk K (`ComputeSettings::validate`).
-            geodesic_disk: sums(self.area, 0.0, 0.0),
+            geodesic_disk: sums(self.area * area_scale, 0.0, 0.0),
         }
     }
 }
@@ -173,7 +173,6 @@ impl Ball {
     #[inline]
     fn add<const WITH_NORMALS: bool>(&self, sums: &mut BallSums, level: &SurfelLevel, s: u32, distance: f64) {
         let SurfelPoint { position, area, spread } = level.point[s as usize];
-        sums.area += area * ((self.area_outer - distance) * self.inverse_ramp).clamp(0.0, 1.0);
         let weight = ((self.outer - distance) * self.inverse_ramp).min(1.0);
         let (area, spread) = (area * weight, spread * weight);
         if !(area > 0.0) {
@@ -196,6 +195,7 @@ impl Ball {
         sums.elevation.1 += elevation * height * distance * inverse_distance2;
         sums.radial.0 += second;
         sums.radial.1 += second * distance;
+        sums.area += area;
         if distance >= self.rho_min {
             if WITH_NORMALS {
                 let g = (self.n - level.normal[s as usize]).length_squared() * inverse_distance2;
