@@ -3,6 +3,7 @@ surfels on uvfeat's own atlas, and a vertex whose ball holds no surfel of the at
 takes the object-space reference's value instead of NaN."""
 
 import functools
+import warnings
 
 import numpy as np
 import pytest
@@ -60,6 +61,19 @@ def test_a_ball_without_surfels_takes_the_references_value():
     for name in HK:
         assert not np.isnan(values[name]).any(), name
         np.testing.assert_allclose(values[name][empty], reference[name], rtol=1e-6)
+
+
+def test_balls_of_a_few_surfels_are_named_and_whole_ones_are_not():
+    charts, _, _ = icosphere_and_squeezed()
+    atlas = uvfeat.Atlas(charts, resolution=256)
+    # About 1.4 texels of 256² across: a ball holds a handful of surfels.
+    texel = np.sqrt(charts.surface_area / charts.uv_area) / 256
+    with pytest.warns(uvfeat.NeighbourhoodWarning, match="summed fewer than 8 surfels: the radius spans about a "
+                                                        "texel of the 256² grid"):
+        atlas.per_vertex(HK, 1.4 * texel, quadrature="surfels")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", uvfeat.NeighbourhoodWarning)
+        atlas.per_vertex(HK, 20 * texel, quadrature="surfels")
 
 
 def test_the_sums_mesh_is_kept_per_mesh_and_an_automatic_atlas_is_its_own():

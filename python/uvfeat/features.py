@@ -306,6 +306,8 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
         texts += notes(counts, atlas.mesh.n_vertices, label)
+        few = int(np.count_nonzero((summed > 0) & (summed < FEW_SURFELS)))
+        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution)
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
     values = {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
@@ -314,6 +316,20 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
 
 #: Features NaN by design where the sums are whole: the shape index of a planar point.
 NAN_WHERE_FLAT = ("shape_index",)
+
+#: A ball summed over fewer surfels spans about a texel of the surfel grid: a coarse quadrature.
+FEW_SURFELS = 8
+
+
+def _coarse_ball_notes(few: int, n_vertices: int, scale: str, resolution: int) -> list[str]:
+    """The note for ``few`` vertices whose balls summed fewer than :data:`FEW_SURFELS` surfels
+    (balls with none took the object-space reference's values: ``_fill_empty_balls``)."""
+    if not few:
+        return []
+    share = f"{few:,} {'vertex' if few == 1 else 'vertices'} ({100 * few / max(n_vertices, 1):.1f} %)"
+    return [f"{scale}, {share} summed fewer than {FEW_SURFELS} surfels: the radius spans about a texel of the "
+            f"{resolution}² grid there and their values are coarse (a finer resolution, or uvfeat.reference, "
+            "serves such radii)"]
 
 
 def _reference_of(mesh):
