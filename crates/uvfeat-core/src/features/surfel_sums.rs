@@ -18,7 +18,7 @@ use super::{NeighbourhoodStats, StatsSettings, WeightedSums};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
-use crate::sampling::{moment_ramp_centre, SampleCounts, SurfelBall};
+use crate::sampling::{moment_ramp_area, moment_ramp_centre, SampleCounts, SurfelBall};
 use glam::{DVec2, DVec3};
 
 /// Where a neighbourhood is centred: a surface point, its unit normal, where it lies in the atlas
@@ -89,17 +89,15 @@ pub fn surfel_sums(
     let mut sums = BallSums::default();
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
-    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r) else {
+    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r, moment_ramp_centre) else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
-    // The flat quadrature's ramp is centred for the area; the sums' as wide, for the moments.
-    let width = search.ramp.1 - search.ramp.0;
-    let edge = r * moment_ramp_centre(width / r);
-    let search = SurfelBall { ramp: (edge - width / 2.0, edge + width / 2.0), ..search };
+    let (inner, outer) = search.ramp;
+    let width = outer - inner;
     let ball = Ball {
         p: centre.position,
         n: centre.normal,
-        outer: search.ramp.1,
+        outer,
         inverse_ramp: 1.0 / width,
         inverse_r2: 1.0 / (r * r),
         r,
@@ -111,9 +109,8 @@ pub fn surfel_sums(
     } else {
         search.search(level, centre.position, |s, distance| ball.add::<false>(&mut sums, level, s, distance));
     }
-    // The moments' ramp weighs a plane's disk `pi (r^2 - 2 w^2 / 3)`: the area ratio is read
-    // against that.
-    (sums.stats(r, r * r / (r * r - 2.0 * width * width / 3.0)), sums.counts)
+    // The area ratio is read against the area the moments' ramp gives a plane's disk.
+    (sums.stats(r, 1.0 / moment_ramp_area(width / r)), sums.counts)
 }
 
 /// The ball and its ramp, seen from the centre.
@@ -172,8 +169,8 @@ impl Ball {
     /// normal's bending integrand `WITH_NORMALS`).
     #[inline]
     fn add<const WITH_NORMALS: bool>(&self, sums: &mut BallSums, level: &SurfelLevel, s: u32, distance: f64) {
-        let SurfelPoint { position, area, spread } = level.point[s as usize];
         let weight = ((self.outer - distance) * self.inverse_ramp).min(1.0);
+        let SurfelPoint { position, area, spread } = level.point[s as usize];
         let (area, spread) = (area * weight, spread * weight);
         if !(area > 0.0) {
             return;

@@ -32,7 +32,7 @@ pub use pattern::{
     concentric_disk, disk_pattern, grid_shape, pcg_hash, pixel_angle, stratified_disk, Placement, TURNS,
 };
 pub use reach::{Reach, DIRECTIONS};
-pub use sample::{moment_ramp_centre, ramp_centre, Sample, SampleCounts};
+pub use sample::{moment_ramp_area, moment_ramp_centre, ramp_centre, Sample, SampleCounts};
 pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 pub use surfels::{gather_surfels, surfel_centre, surfel_grid_width, SurfelBall};

@@ -89,6 +89,12 @@ pub fn moment_ramp_centre(width: f64) -> f64 {
     (1.0 - 0.75 * width * width).sqrt()
 }
 
+/// The area a ramp `width` wide centred by [`moment_ramp_centre`] gives a disk of radius 1, over
+/// `pi`: `1 - 2 width^2 / 3` (for an area ratio read under that ramp).
+pub fn moment_ramp_area(width: f64) -> f64 {
+    1.0 - 2.0 * width * width / 3.0
+}
+
 /// A surface point reached by one pattern sample, before the ball test.
 pub struct Candidate {
     /// The surface point `q`.
@@ -156,8 +162,9 @@ mod tests {
     #[test]
     fn each_ramp_keeps_its_disk_moment() {
         for w in [0.05, 0.1, 0.3] {
-            // The area's: a unit disk's pi exactly.
+            // The area's: a unit disk's pi exactly; the moments' gives it `moment_ramp_area`.
             assert!((moment(0, ramp_centre(w), w) / 0.5 - 1.0).abs() < 1e-12, "w = {w}");
+            assert!((moment(0, moment_ramp_centre(w), w) / 0.5 - moment_ramp_area(w)).abs() < 1e-12, "w = {w}");
             // The moments': rho^4 over rho^2 as the disk's 2/3, to O(w^4); the area's ramp is off by
             // 2 w^2 / 3 (the moment a wrong centring would break).
             let ratio = |c: f64| moment(4, c, w) / moment(2, c, w) / (2.0 / 3.0) - 1.0;

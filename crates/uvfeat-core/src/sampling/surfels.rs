@@ -98,7 +98,8 @@ pub fn gather_surfels(
     let mut counts = SampleCounts::default();
     let w = atlas.resolution() as f64;
     let texels = (centre.distortion.sigma1 / w, centre.distortion.area_element().sqrt() / w);
-    let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, settings.radius) else {
+    let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, settings.radius, ramp_centre)
+    else {
         return counts;
     };
     let level = &surfels.levels[ball.level];
@@ -137,8 +138,8 @@ pub struct SurfelBall {
     pub level: usize,
     /// The surfel of that level holding the centre.
     pub start: u32,
-    /// Weights fall linearly from 1 at `ramp.0` to 0 at `ramp.1`: one surfel wide, centred so
-    /// that a plane's disk weighs exactly `pi r^2`.
+    /// Weights fall linearly from 1 at `ramp.0` to 0 at `ramp.1`: one surfel wide, centred as
+    /// the caller asks ([`SurfelBall::new`]).
     pub ramp: (f64, f64),
 }
 
@@ -146,20 +147,24 @@ impl SurfelBall {
     /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is up to
     /// `texels.0` long and `texels.1` on the side of its area (`sigma_1 / W`, `sqrt(sigma_1
     /// sigma_2) / W`). `None` where neither the point's texel nor its eight neighbours hold a
-    /// surfel of its chart (the centre of a gutter texel lies just off its chart).
+    /// surfel of its chart (the centre of a gutter texel lies just off its chart). `centring`
+    /// places the ramp (its width in units of `r` to its centre): [`ramp_centre`] where the
+    /// samples' areas are read (a plane's disk weighs exactly `pi r^2`),
+    /// [`moment_ramp_centre`](super::moment_ramp_centre) where only ratios of their moments are.
     pub fn new(
         atlas: &Atlas,
         surfels: &Surfels,
         (uv, chart): (DVec2, i32),
         texels: (f64, f64),
         radius: f64,
+        centring: fn(f64) -> f64,
     ) -> Option<Self> {
         let finest = surfels.levels.first()?;
         let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
         let level = surfel_level(surfels.levels.len(), texels.0, radius, TARGET_SURFELS);
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
         let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
-        let edge = radius * ramp_centre(width / radius);
+        let edge = radius * centring(width / radius);
         Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0) })
     }
 
