@@ -123,7 +123,7 @@ def surfel_resolution(mesh, radius) -> int:
             smallest = resolve_radius(radius, diagonal)
     except (InvalidParameterError, TypeError, ValueError):
         return SURFEL_RESOLUTION
-    return _core.surfel_grid_width(mesh.surface_area, mesh.uv_area, smallest, SURFEL_RESOLUTION)
+    return _core.surfel_grid_width(mesh.topology, mesh.positions, smallest, SURFEL_RESOLUTION)
 
 
 def sums_resolution(mesh, radius, resolution: int) -> int:

@@ -20,6 +20,7 @@ mod sample;
 mod secant_metric;
 mod settings;
 mod sheets;
+mod surfel_grid;
 mod surfels;
 
 pub use centre::{centre_at, texel_point, Centre, TexelPoint};
@@ -35,4 +36,5 @@ pub use reach::{Reach, DIRECTIONS};
 pub use sample::{moment_ramp_area, moment_ramp_centre, ramp_centre, Sample, SampleCounts};
 pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
-pub use surfels::{gather_surfels, surfel_centre, surfel_grid_width, SurfelBall};
+pub use surfel_grid::{grid_width, surfel_grid_width, FaceScale};
+pub use surfels::{gather_surfels, surfel_centre, SurfelBall};

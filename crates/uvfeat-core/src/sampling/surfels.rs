@@ -30,29 +30,7 @@ use std::cell::RefCell;
 /// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level): the
 /// cost of a ball, and its quadrature error, which is a few tenths of a percent of H's range on the
 /// shared scans at 256 (halving it from 512 halved the cost at r = 4-8 % and added up to 0.2 %).
-const TARGET_SURFELS: f64 = 256.0;
-
-/// The coarsest surfel grid [`surfel_grid_width`] gives: below it a chart of a scan's atlas spans
-/// few texels.
-const SMALLEST_GRID: usize = 128;
-
-/// The smallest surfel grid, a power of two from 128 up to `largest`, whose finest surfels put at
-/// least [`TARGET_SURFELS`] in a plane's ball of `radius` on a mesh of `surface_area` whose charts
-/// cover `uv_area` of the unit square (texels of the mean size, `sqrt(surface_area / uv_area) /
-/// W` long). A finer grid would be summed at a coarser level of its pyramid anyway; a grid of half
-/// the width builds its pyramid in about a quarter of the time. `largest` where the areas or the
-/// radius are not positive and finite.
-pub fn surfel_grid_width(surface_area: f64, uv_area: f64, radius: f64, largest: usize) -> usize {
-    let needed = (TARGET_SURFELS * surface_area / (std::f64::consts::PI * radius * radius * uv_area)).sqrt();
-    if !(needed.is_finite() && needed > 0.0) {
-        return largest;
-    }
-    let mut width = SMALLEST_GRID.min(largest);
-    while (width as f64) < needed && width < largest {
-        width *= 2;
-    }
-    width.min(largest)
-}
+pub(super) const TARGET_SURFELS: f64 = 256.0;
 
 thread_local! {
     /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
@@ -61,7 +39,7 @@ thread_local! {
 
 /// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about `target` in
 /// the ball where a finest surfel is up to `texel_length` long (`sigma_1 / W`).
-fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
+pub(super) fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
     // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
     // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
     // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
@@ -199,28 +177,5 @@ impl SurfelBall {
                 visit(s, distance2.sqrt());
             }
         });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use std::f64::consts::PI;
-
-    #[test]
-    fn the_surfel_grid_is_the_smallest_that_puts_the_target_in_a_ball() {
-        // A unit sphere's area on half the unit square: texels of the mean size are
-        // sqrt(8 pi) / W long.
-        let (area, uv_area) = (4.0 * PI, 0.5);
-        let holds = |width: usize, r: f64| PI * r * r * (width * width) as f64 * uv_area / area;
-        for (r, expected) in [(1.0, 128), (0.2, 256), (0.15, 512), (0.05, 512)] {
-            let width = surfel_grid_width(area, uv_area, r, 512);
-            assert_eq!(width, expected, "r = {r}");
-            assert!(width == 512 || holds(width, r) >= TARGET_SURFELS, "r = {r}");
-            assert!(width == SMALLEST_GRID || holds(width / 2, r) < TARGET_SURFELS, "r = {r}");
-        }
-        assert_eq!(surfel_grid_width(area, 0.0, 0.2, 512), 512);
-        assert_eq!(surfel_grid_width(area, uv_area, f64::NAN, 1024), 1024);
-        assert_eq!(surfel_grid_width(area, uv_area, 1.0, 64), 64);
     }
 }
