@@ -43,9 +43,10 @@ _UV = Sequence[float]
 def atlas_bytes(resolution: int, n_faces: int) -> int:
     """Bytes an atlas of ``n_faces`` faces takes at ``resolution``² (buffers and per-face tables)."""
 
-def surfel_grid_width(surface_area: float, uv_area: float, radius: float, largest: int) -> int:
-    """The smallest surfel grid (a power of two from 128 up to ``largest``) whose finest surfels put
-    about 256 in a ball of ``radius`` on a mesh of ``surface_area`` whose charts cover ``uv_area``."""
+def surfel_grid_width(topology: Topology, positions: NDArray[np.float64], radius: float, largest: int) -> int:
+    """The surfel grid (a power of two from 128 up to ``largest``) for balls of ``radius`` on the
+    mesh of ``topology`` at ``positions``: the smallest whose finest surfels, of the mean size, put
+    about 256 in a ball, halved while at most a quarter of the surface asks for its finest level."""
 
 def shape(
     name: str, sizes: list[float], counts: list[int], mirrored: bool = False
