@@ -29,9 +29,9 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     has UVs of its own (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the
     surface into few texels; uvfeat's gives every chart one texel size), and a vertex whose ball
     holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for
-    the maps and, for the surfel sums, to the smallest grid up to 512 whose finest surfels put about
-    256 in a ball of the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 at 1-4 %
-    of the diagonal on a scan's atlas, 256 at 8 %).
+    the maps and, for the surfel sums, to the grid up to 512 whose pyramid holds the level each
+    face's balls of the smallest radius ask for (:func:`~uvfeat.options.surfel_resolution`: 512 at
+    1-2 % of the diagonal on a scan's atlas, 256 or 512 at 4 %, 128 or 256 at 8 %).
 
     Returns
     -------

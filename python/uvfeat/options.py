@@ -109,9 +109,10 @@ def surfel_resolution(mesh, radius) -> int:
     """The atlas resolution of the surfel sums at the vertices of ``mesh`` for ``radius`` (a length,
     a percentage, a list, or one per vertex: the smallest counts): the smallest power of two up to
     :data:`SURFEL_RESOLUTION` whose finest surfels, of the mean size on its charts, put about 256 in
-    a ball (``_core.surfel_grid_width``); coarser pyramid levels would be summed anyway, and half
-    the width builds the surfels in a quarter of the time. Radii the computation will reject give
-    :data:`SURFEL_RESOLUTION` (the computation names them)."""
+    a ball, halved while at most a quarter of the surface asks for its finest level
+    (``_core.surfel_grid_width``): half the width holds every coarser level and builds its surfels
+    in a quarter of the time. Radii the computation will reject give :data:`SURFEL_RESOLUTION` (the
+    computation names them)."""
     diagonal = mesh.bounding_box_diagonal
     try:
         own = per_vertex_radii(radius, mesh.n_vertices)
