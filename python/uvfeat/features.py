@@ -18,7 +18,7 @@ import numpy as np
 from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
-from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags
+from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags, vertex_share
 from .options import (ARGUMENT_DEFAULTS, core_options, feature_names, per_vertex_defaults, resolve_options,
                       resolve_radius, warn_paper_mode)
 from .vertex_radii import LevelReader, levels, per_vertex_radii
@@ -326,8 +326,7 @@ def _coarse_ball_notes(few: int, n_vertices: int, scale: str, resolution: int) -
     (balls with none took the object-space reference's values: ``_fill_empty_balls``)."""
     if not few:
         return []
-    share = f"{few:,} {'vertex' if few == 1 else 'vertices'} ({100 * few / max(n_vertices, 1):.1f} %)"
-    return [f"{scale}, {share} summed fewer than {FEW_SURFELS} surfels: the radius spans about a texel of the "
+    return [f"{scale}, {vertex_share(few, n_vertices)} summed fewer than {FEW_SURFELS} surfels: the radius spans about a texel of the "
             f"{resolution}² grid there and their values are coarse (a finer resolution, or uvfeat.reference, "
             "serves such radii)"]
 

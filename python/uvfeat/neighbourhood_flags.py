@@ -78,11 +78,15 @@ def vertex_flags(mesh, flags: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     return out
 
 
+def vertex_share(count: int, n_vertices: int) -> str:
+    """``"1,234 vertices (5.6 %)"``: how many of ``n_vertices`` a note is about."""
+    return f"{count:,} {'vertex' if count == 1 else 'vertices'} ({100 * count / max(n_vertices, 1):.1f} %)"
+
+
 def notes(counts: dict[str, int], n_vertices: int, scale: str) -> list[str]:
     """A note per flag with flagged vertices, saying what it means and what to do; ``scale`` opens
     it (``"at r = 4%"``, ``"at each vertex's own radius"``)."""
-    share = {name: f"{count:,} {'vertex' if count == 1 else 'vertices'} ({100 * count / max(n_vertices, 1):.1f} %)"
-             for name, count in counts.items()}
+    share = {name: vertex_share(count, n_vertices) for name, count in counts.items()}
     texts = {
         "truncated": f"{scale}, {share['truncated']} have neighbourhoods cut by a mesh border: their values "
                      "are biased (a smaller radius shrinks the band)",

@@ -3,7 +3,7 @@
 
 use crate::distortion::{corner_metrics, interpolated_metric, seam_corner_metrics, Distortion};
 use crate::error::Result;
-use crate::mesh::{seam_maps, vertex_normals, Jacobian, SeamMap, Topology};
+use crate::mesh::{linear_gradient, seam_maps, uv_inverse, vertex_normals, Jacobian, SeamMap, Topology};
 use glam::{DMat2, DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -56,17 +56,9 @@ impl FaceMap {
 
     #[inline]
     fn new(x: [DVec3; 3], n: [DVec3; 3], uv: [DVec2; 3]) -> Option<Self> {
-        let inv = DMat2::from_cols(uv[1] - uv[0], uv[2] - uv[0]);
-        if inv.determinant() == 0.0 {
-            return None;
-        }
-        let inv = inv.inverse();
-        let gradient = |v: [DVec3; 3]| {
-            let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
-            (e1 * inv.x_axis.x + e2 * inv.x_axis.y, e1 * inv.y_axis.x + e2 * inv.y_axis.y)
-        };
-        let (pu, pv) = gradient(x);
-        let (nu, nv) = gradient(n);
+        let inv = uv_inverse(uv)?;
+        let (pu, pv) = linear_gradient(x, inv);
+        let (nu, nv) = linear_gradient(n, inv);
         let jacobian = Jacobian { pu, pv };
         let corners = [(x[0], n[0]), (x[1], n[1]), (x[2], n[2])];
         Some(Self {

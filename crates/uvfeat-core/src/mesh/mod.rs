@@ -18,7 +18,7 @@ pub use adjacency::{EdgeLink, WalkFace};
 pub use corners::NO_CORNER;
 pub(crate) use edges::sorted_half_edges;
 pub use edges::{EdgeCounts, SideKind};
-pub use jacobian::Jacobian;
+pub use jacobian::{linear_gradient, uv_inverse, Jacobian};
 pub use normals::{unit_face_normal, vertex_normals};
 pub use sides::BoundarySide;
 pub use topology::{Topology, TopologyDiagnostics};

@@ -8,7 +8,8 @@
 //! faces that ask for the wider grid's finest level lose, to a quarter of their surfels.
 
 use super::surfels::{surfel_level, TARGET_SURFELS};
-use crate::mesh::Topology;
+use crate::distortion::Distortion;
+use crate::mesh::{Jacobian, Topology};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -39,18 +40,13 @@ impl FaceScale {
     /// The scale of a face with corners `positions` at `uvs`; `None` where the UV triangle is
     /// degenerate.
     pub fn new(positions: [DVec3; 3], uvs: [glam::DVec2; 3]) -> Option<Self> {
-        let (e1, e2) = (positions[1] - positions[0], positions[2] - positions[0]);
+        let jacobian = Jacobian::of_triangle(positions, uvs)?;
         let (d1, d2) = (uvs[1] - uvs[0], uvs[2] - uvs[0]);
-        let det = d1.perp_dot(d2);
-        if !(det.abs() > 0.0) {
-            return None;
-        }
-        // J = [e1 e2] [d1 d2]^-1; sigma_1^2 is the larger eigenvalue of its metric.
-        let pu = (e1 * d2.y - e2 * d1.y) / det;
-        let pv = (e2 * d1.x - e1 * d2.x) / det;
-        let (e, f, g) = (pu.dot(pu), pu.dot(pv), pv.dot(pv));
-        let sigma1 = (0.5 * (e + g) + (0.25 * (e - g).powi(2) + f * f).sqrt()).sqrt();
-        Some(Self { area: 0.5 * e1.cross(e2).length(), uv_area: 0.5 * det.abs(), sigma1 })
+        Some(Self {
+            area: 0.5 * (positions[1] - positions[0]).cross(positions[2] - positions[0]).length(),
+            uv_area: 0.5 * d1.perp_dot(d2).abs(),
+            sigma1: Distortion::from_metric(jacobian.metric()).sigma1,
+        })
     }
 }
 
