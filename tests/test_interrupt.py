@@ -60,10 +60,9 @@ CHILD = textwrap.dedent("""
 
 
 def test_ctrl_c_stops_every_long_path_within_half_a_second():
-    latencies = interrupt_each(CHILD, 0.5)
-    assert len(latencies) == 10, latencies
-    slow = {name: round(t, 2) for name, t in latencies.items() if t > 0.5}
-    assert not slow, f"interrupted later than 0.5 s: {slow}"
+    # The longest step without a check (sorting the finest surfels of a 1024² grid) takes about
+    # 0.2 s on 2 idle cores.
+    assert_interrupted_within_half_a_second(CHILD, 0.5, 10)
 
 
 #: A batch on its own local cluster: "started" once the cluster is up (starting it takes seconds);
@@ -162,13 +161,19 @@ def interrupt_each(child: str | list[str], into: float) -> dict[str, float]:
 def test_ctrl_c_stops_the_set_up_of_a_large_mesh_within_half_a_second():
     # The set-up stops between its steps and skips the rest of its per-face loops; its longest
     # step without a check (the welding sort, the frame's normals and metrics) takes about 0.3 s
-    # at 2M faces on 2 idle cores. The suite's other processes share those cores, so a step that
-    # was late is measured once more and the faster time counts.
-    latencies = interrupt_each(SET_UP, 0.3)
-    assert len(latencies) == 3, latencies
+    # at 2M faces on 2 idle cores.
+    assert_interrupted_within_half_a_second(SET_UP, 0.3, 3)
+
+
+def assert_interrupted_within_half_a_second(child: str, into: float, calls: int) -> None:
+    """Every one of the ``calls`` of ``child`` stops within 0.5 s of its signal. The suite's other
+    processes share the cores, so a call that was late is measured once more and the faster
+    time counts."""
+    latencies = interrupt_each(child, into)
+    assert len(latencies) == calls, latencies
     if any(t > 0.5 for t in latencies.values()):
         latencies = {name: min(t, again) for (name, t), again in zip(latencies.items(),
-                                                                      interrupt_each(SET_UP, 0.3).values())}
+                                                                      interrupt_each(child, into).values())}
     slow = {name: round(t, 2) for name, t in latencies.items() if t > 0.5}
     assert not slow, f"interrupted later than 0.5 s: {slow}"
 
