@@ -218,6 +218,32 @@ impl SurfelLevel {
         }
     }
 
+    /// The surfels `range` (a block) as `(chart, component, surfel)` in that order, where the
+    /// components join adjacent surfels for which `same` holds, each named by its smallest surfel.
+    fn joined(&self, range: std::ops::Range<usize>, same: impl Fn(usize, usize) -> bool) -> Vec<(i32, u32, u32)> {
+        let first = range.start;
+        let mut root: Vec<u32> = range.clone().map(|s| s as u32).collect();
+        fn find(root: &mut [u32], first: usize, mut s: u32) -> u32 {
+            while root[s as usize - first] != s {
+                root[s as usize - first] = root[root[s as usize - first] as usize - first];
+                s = root[s as usize - first];
+            }
+            s
+        }
+        for s in range.clone() {
+            for &t in self.neighbours(s as u32) {
+                if range.contains(&(t as usize)) && same(s, t as usize) {
+                    let (a, b) = (find(&mut root, first, s as u32), find(&mut root, first, t));
+                    root[(a.max(b)) as usize - first] = a.min(b);
+                }
+            }
+        }
+        let mut joined: Vec<(i32, u32, u32)> =
+            range.map(|s| (self.chart[s], find(&mut root, first, s as u32), s as u32)).collect();
+        joined.sort_unstable();
+        joined
+    }
+
     /// The next level up: in each 2 x 2 block of texels, the surfels of one chart joined by
     /// adjacency form one surfel; sets `self.parent`.
     fn coarser(&mut self) -> Self {
@@ -227,32 +253,22 @@ impl SurfelLevel {
             ((j / 2) * width + i / 2) as u32
         };
         let key = |s: usize| (up(self.texel[s]), self.chart[s]);
-        // Union-find over the surfels, joining adjacent ones of the same block and chart.
-        let mut root: Vec<u32> = (0..self.len() as u32).collect();
-        fn find(root: &mut [u32], mut s: u32) -> u32 {
-            while root[s as usize] != s {
-                root[s as usize] = root[root[s as usize] as usize];
-                s = root[s as usize];
-            }
-            s
-        }
-        for s in 0..self.len() {
-            for &t in self.neighbours(s as u32) {
-                if key(s) == key(t as usize) {
-                    let (a, b) = (find(&mut root, s as u32), find(&mut root, t));
-                    root[a.max(b) as usize] = a.min(b);
-                }
-            }
-        }
-        // In Z order of the texels, as the finest level (`in_z_order`).
-        let mut order: Vec<(u64, i32, u32, u32)> = (0..self.len())
-            .map(|s| {
-                let (texel, chart) = key(s);
-                let t = texel as usize;
-                (morton(t % width, t / width), chart, find(&mut root, s as u32), s as u32)
+        // Surfels join only within their block, and a block's surfels are consecutive (Z order of
+        // the texels, then chart): the blocks are joined apart, in parallel.
+        let mut bounds: Vec<usize> =
+            (0..self.len()).filter(|&s| s == 0 || key(s).0 != key(s - 1).0).chain([self.len()]).collect();
+        bounds.dedup();
+        let order: Vec<(u64, i32, u32, u32)> = bounds
+            .par_windows(2)
+            .with_min_len(256)
+            .flat_map_iter(|block| {
+                let t = key(block[0]).0 as usize;
+                let z = morton(t % width, t / width);
+                self.joined(block[0]..block[1], |s, t| key(s) == key(t))
+                    .into_iter()
+                    .map(move |(chart, root, s)| (z, chart, root, s))
             })
             .collect();
-        order.par_sort_unstable();
         let mut owner = vec![0u32; order.len()];
         for k in 1..order.len() {
             owner[k] = owner[k - 1] + u32::from(order[k].2 != order[k - 1].2);
