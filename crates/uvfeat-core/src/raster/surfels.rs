@@ -254,10 +254,10 @@ impl SurfelLevel {
         };
         let key = |s: usize| (up(self.texel[s]), self.chart[s]);
         // Surfels join only within their block, and a block's surfels are consecutive (Z order of
-        // the texels, then chart): the blocks are joined apart, in parallel.
-        let mut bounds: Vec<usize> =
+        // the texels, then chart): the blocks are joined apart, in parallel, and listed in the Z
+        // order of the coarse texels, as the finest level (`in_z_order`).
+        let bounds: Vec<usize> =
             (0..self.len()).filter(|&s| s == 0 || key(s).0 != key(s - 1).0).chain([self.len()]).collect();
-        bounds.dedup();
         let order: Vec<(u64, i32, u32, u32)> = bounds
             .par_windows(2)
             .with_min_len(256)
