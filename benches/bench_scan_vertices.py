@@ -7,7 +7,7 @@ time of each method, from a loaded mesh with a cached automatic atlas.
         [--resolution 512] [--truth facets|smooth]
 
 Methods: `default` is `uvfeat.compute` with its defaults (on these many-chart atlases, the values at
-the vertices from the surfels); `kept` the same values from `Atlas.per_vertex` on an Atlas kept for
+the vertices from the surfels), `default:128` the same with `samples=128` (surfels per ball); `kept` the same values from `Atlas.per_vertex` on an Atlas kept for
 the mesh and radius (built, with its surfels, before the timing); `pattern` the pattern read from its 512² maps, the default of a
 single chart (`quadrature="pattern"`, 1024² buffers); `vertices` is `uvfeat.compute` with
 `quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
@@ -75,6 +75,9 @@ def method(name: str, resolution: int):
         return lambda mesh, radius: uvfeat.reference.compute(mesh, FEATURES, radius=radius)
     if name == "default":
         return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius)
+    if name.startswith("default:"):
+        samples = int(name.partition(":")[2])
+        return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius, samples=samples)
     if name == "kept":
         return kept_atlas_values
     if name == "pattern":

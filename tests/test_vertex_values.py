@@ -119,6 +119,26 @@ def test_large_radii_take_a_coarser_surfel_grid_with_the_same_values():
             assert 0 < error < 0.002, (radius, name, error)
 
 
+def test_samples_sets_the_surfels_per_ball():
+    # At r = 6 % with 32 surfels per ball (a 128² grid): H / K 0.41 / 0.30 % of the range, with
+    # 256 (the default, 256²) 0.19 / 0.10 %, with 1024 (512²) 0.19 / 0.09 %; measured.
+    mesh = bumpy_sphere()
+    assert [uvfeat.options.surfel_resolution(mesh, "6%", n) for n in (32, 256, 1024)] == [128, 256, 512]
+    rows = np.random.default_rng(1).choice(mesh.n_vertices, 400, replace=False)
+    truth = uvfeat.converged_reference(mesh, HK, "6%", vertices=rows, max_levels=2).values
+    errors = {n: {name: range_normalised_error(values[rows], truth[name])
+                  for name, values in uvfeat.compute(mesh, HK, "6%", samples=n, **SURFELS).items()}
+              for n in (32, 256)}
+    for name in HK:
+        assert 1.5 * errors[256][name] < errors[32][name] < 0.01, (name, errors)
+    # A kept atlas sums as many: the 512² pyramid, its levels chosen for each count.
+    atlas = uvfeat.Atlas(mesh, resolution=512)
+    few, default = (atlas.per_vertex(HK, "6%", samples=n, **SURFELS) for n in (32, 256))
+    for name in HK:
+        assert range_normalised_error(few[name][rows], truth[name]) > 1.5 * range_normalised_error(
+            default[name][rows], truth[name]), name
+
+
 @pytest.mark.parametrize("radius", ["2%", "6%"])
 def test_the_defaults_on_many_charts_agree_with_the_converged_reference(radius):
     # The defaults integrate the smooth surface through the vertex normals, which the converged

@@ -221,7 +221,10 @@ class Atlas:
             ``mesh.positions`` gives each texel the radius of its surface point (see
             :mod:`uvfeat.vertex_radii`).
         samples : int
-            Monte Carlo samples per texel (>= 4).
+            Samples per neighbourhood (>= 4): the pattern's points per texel, or with
+            ``quadrature="surfels"`` about as many surfels per ball (the pyramid level summed; half
+            as many take about half the time and add a few tenths of a percent of the range to H and
+            K on a detailed scan, docs/BENCHMARKS.md).
         compute_resolution : int
             Size ``W_c`` of the computation texture.
         adaptive : bool
@@ -247,8 +250,8 @@ class Atlas:
             quadric fit, which also gives ``principal_directions`` and ``fit_residual``),
             ``overlaps`` ("keep" | "drop"), ``quadrature`` ("pattern": the samples above;
             "surfels": the atlas's pieces of surface connected to the centre inside the ball, each
-            counted once, for scans cut into many charts; ``samples``, ``adaptive``, the sampler
-            options and the geodesic methods do not apply, DESIGN.md §1.4.8) and ``surface``
+            counted once, for scans cut into many charts; ``adaptive``, the sampler options and the
+            geodesic methods do not apply, DESIGN.md §1.4.8) and ``surface``
             ("smooth" | "facets": the surface the surfels lie on).
 
         Returns

@@ -114,7 +114,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     sums = None if quadrature is not None else vertex_sums_options(mesh, names, named, paper_mode=False)
     if sums is not None:
         mesh = sums_mesh(mesh, names, named, paper_mode=False)
-        resolution = sums_resolution(mesh, radius, resolution)
+        resolution = sums_resolution(mesh, radius, resolution, samples)
     atlas = Atlas(mesh, resolution=resolution)
     started = time.perf_counter()
     atlas.update(mesh.positions)
@@ -127,7 +127,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
         first = next(iter(maps.values()))
         length, parametric_samples = float(first.radius), float(first.summary["mean_valid_samples"])
     else:
-        values = atlas.per_vertex(names, radius, seed=seed, **options, **sums)
+        values = atlas.per_vertex(names, radius, samples=samples, seed=seed, **options, **sums)
         features_s = time.perf_counter() - started - buffers_s
         length, parametric_samples = resolve_radius(radius, mesh.bounding_box_diagonal), None
     parametric_s = time.perf_counter() - started

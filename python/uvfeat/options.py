@@ -105,11 +105,11 @@ def sums_mesh(mesh, features, options: dict, paper_mode: bool):
     return mesh
 
 
-def surfel_resolution(mesh, radius) -> int:
+def surfel_resolution(mesh, radius, samples: int = ARGUMENT_DEFAULTS["samples"]) -> int:
     """The atlas resolution of the surfel sums at the vertices of ``mesh`` for ``radius`` (a length,
-    a percentage, a list, or one per vertex: the smallest counts): the smallest power of two up to
-    :data:`SURFEL_RESOLUTION` whose finest surfels, of the mean size on its charts, put about 256 in
-    a ball, halved while at most a quarter of the surface asks for its finest level
+    a percentage, a list, or one per vertex: the smallest counts) over about ``samples`` surfels per
+    ball: the smallest power of two up to :data:`SURFEL_RESOLUTION` whose finest surfels, of the mean
+    size on its charts, put ``samples`` in a ball, halved while at most a quarter of the surface asks for its finest level
     (``_core.surfel_grid_width``): half the width holds every coarser level and builds its surfels
     in a quarter of the time. Radii the computation will reject give :data:`SURFEL_RESOLUTION` (the
     computation names them)."""
@@ -124,15 +124,15 @@ def surfel_resolution(mesh, radius) -> int:
             smallest = resolve_radius(radius, diagonal)
     except (InvalidParameterError, TypeError, ValueError):
         return SURFEL_RESOLUTION
-    return _core.surfel_grid_width(mesh.topology, mesh.positions, smallest, SURFEL_RESOLUTION)
+    return _core.surfel_grid_width(mesh.topology, mesh.positions, smallest, float(samples), SURFEL_RESOLUTION)
 
 
-def sums_resolution(mesh, radius, resolution: int) -> int:
+def sums_resolution(mesh, radius, resolution: int, samples: int = ARGUMENT_DEFAULTS["samples"]) -> int:
     """The atlas resolution of the surfel sums at the vertices where a command or ``compare`` was
     given ``resolution``: the surfel grid of the radius (:func:`surfel_resolution`) where it is the
     default :data:`ATLAS_RESOLUTION` (a default cannot be told from a choice there), else
     ``resolution``."""
-    return surfel_resolution(mesh, radius) if resolution == ATLAS_RESOLUTION else resolution
+    return surfel_resolution(mesh, radius, samples) if resolution == ATLAS_RESOLUTION else resolution
 
 
 def feature_names(features) -> list[str]:

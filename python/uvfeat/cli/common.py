@@ -97,7 +97,8 @@ def add_uv_options(parser: argparse.ArgumentParser) -> None:
 
 def add_feature_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--samples", type=int, default=ARGUMENT_DEFAULTS["samples"],
-                        help="Monte Carlo samples per texel (default %(default)s)")
+                        help="samples per neighbourhood: the pattern's points per texel, or about as many "
+                             "surfels per ball with the surfels (fewer: faster and coarser; default %(default)s)")
     parser.add_argument("--compute-resolution", type=int, default=ARGUMENT_DEFAULTS["compute_resolution"],
                         help="computation texture size (default %(default)s)")
     parser.add_argument("--method", choices=CHOICES["method"], default=DEFAULT_OPTIONS["method"],

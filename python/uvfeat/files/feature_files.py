@@ -150,7 +150,7 @@ class FeatureJob:
     def vertex_resolution(self, mesh) -> int:
         """The atlas resolution of the sums at the vertices: the surfel grid of the smallest radius,
         as ``uvfeat.compute`` takes it, unless ``resolution`` names another size than the default."""
-        return sums_resolution(mesh, list(self.radii), self.resolution)
+        return sums_resolution(mesh, list(self.radii), self.resolution, self.samples)
 
     @classmethod
     def option_names(cls) -> list[str]:

@@ -74,6 +74,8 @@ pub struct SurfelSumSettings {
     pub surface: Surface,
     /// Sum the samples' normals (bending energy).
     pub with_normals: bool,
+    /// Surfels a plane's ball is summed over ([`SurfelBall::new`]).
+    pub surfels_per_ball: f64,
 }
 
 /// The sums of the ball's connected part around `centre`, with their sample counts (`valid`:
@@ -89,7 +91,9 @@ pub fn surfel_sums(
     let mut sums = BallSums::default();
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
-    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, r, moment_ramp_centre) else {
+    let per_ball = (r, settings.surfels_per_ball);
+    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, per_ball, moment_ramp_centre)
+    else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
     let (inner, outer) = search.ramp;

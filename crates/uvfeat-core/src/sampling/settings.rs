@@ -45,6 +45,8 @@ pub struct SamplerSettings {
     pub overlaps: Overlaps,
     /// The surface the surfels lie on.
     pub surface: Surface,
+    /// Surfels a plane's ball is summed over (`quadrature = "surfels"`: the `samples` option).
+    pub surfels_per_ball: f64,
 }
 
 /// Surface that the sampling domain reaches twice. Across seams the domain is carried by the

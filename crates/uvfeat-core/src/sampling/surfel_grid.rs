@@ -1,13 +1,13 @@
 //! The atlas resolution the surfel sums at the vertices are built at (DESIGN.md §1.4.9): the
 //! coarsest grid whose pyramid still holds the level each face's balls ask for.
 //!
-//! A ball sums the pyramid level that puts about [`TARGET_SURFELS`] in it where a finest surfel is
+//! A ball sums the pyramid level that puts about its surfels per ball in it where a finest surfel is
 //! as long as the face's texels along their longer side ([`surfel_level`]). A grid of half the
 //! width builds its surfels in about a quarter of the time, and its level `k` is the wider grid's
 //! level `k + 1`: every face that asks for level 1 or coarser sums the same surfels on it. Only the
 //! faces that ask for the wider grid's finest level lose, to a quarter of their surfels.
 
-use super::surfels::{surfel_level, TARGET_SURFELS};
+use super::surfels::surfel_level;
 use crate::distortion::Distortion;
 use crate::mesh::{Jacobian, Topology};
 use glam::DVec3;
@@ -50,10 +50,15 @@ impl FaceScale {
     }
 }
 
-/// The surfel grid for balls of `radius` on the mesh of `topology` at the input vertices'
-/// `positions` ([`grid_width`] of its faces); `largest` where the positions are not one finite
-/// row per input vertex (the computation names the problem).
-pub fn surfel_grid_width(topology: &Topology, positions: &[DVec3], radius: f64, largest: usize) -> usize {
+/// The surfel grid for balls of `radius` summed over about `per_ball` surfels on the mesh of
+/// `topology` at the input vertices' `positions` ([`grid_width`] of its faces); `largest` where the
+/// positions are not one finite row per input vertex (the computation names the problem).
+pub fn surfel_grid_width(
+    topology: &Topology,
+    positions: &[DVec3],
+    (radius, per_ball): (f64, f64),
+    largest: usize,
+) -> usize {
     if positions.len() != topology.vertex_ids.len() {
         return largest;
     }
@@ -64,17 +69,17 @@ pub fn surfel_grid_width(topology: &Topology, positions: &[DVec3], radius: f64, 
         .filter_map(|f| FaceScale::new(topology.faces[f].map(position), topology.corner_uvs(f)))
         .collect();
     // A NaN area makes the grid `largest`.
-    grid_width(&faces, radius, largest)
+    grid_width(&faces, (radius, per_ball), largest)
 }
 
-/// The surfel grid, a power of two from 128 up to `largest`, for balls of `radius` on `faces`:
-/// the smallest whose finest surfels, of the mean size, put at least [`TARGET_SURFELS`] in a plane's
-/// ball, halved while at most [`COARSER_SHARE`] of the surface asks for its finest level.
-/// `largest` where the areas or the radius are not positive and finite.
-pub fn grid_width(faces: &[FaceScale], radius: f64, largest: usize) -> usize {
+/// The surfel grid, a power of two from 128 up to `largest`, for balls of `radius` summed over
+/// about `per_ball` surfels on `faces`: the smallest whose finest surfels, of the mean size, put at
+/// least `per_ball` in a plane's ball, halved while at most [`COARSER_SHARE`] of the surface asks for
+/// its finest level. `largest` where the areas, the radius or `per_ball` are not positive and finite.
+pub fn grid_width(faces: &[FaceScale], (radius, per_ball): (f64, f64), largest: usize) -> usize {
     let surface_area: f64 = faces.iter().map(|f| f.area).sum();
     let uv_area: f64 = faces.iter().map(|f| f.uv_area).sum();
-    let needed = (TARGET_SURFELS * surface_area / (std::f64::consts::PI * radius * radius * uv_area)).sqrt();
+    let needed = (per_ball * surface_area / (std::f64::consts::PI * radius * radius * uv_area)).sqrt();
     if !(needed.is_finite() && needed > 0.0) {
         return largest;
     }
@@ -84,11 +89,7 @@ pub fn grid_width(faces: &[FaceScale], radius: f64, largest: usize) -> usize {
     }
     let asking_finest = |width: usize| -> f64 {
         let w = width as f64;
-        faces
-            .par_iter()
-            .filter(|f| surfel_level(usize::MAX, f.sigma1 / w, radius, TARGET_SURFELS) == 0)
-            .map(|f| f.area)
-            .sum()
+        faces.par_iter().filter(|f| surfel_level(usize::MAX, f.sigma1 / w, radius, per_ball) == 0).map(|f| f.area).sum()
     };
     while width > SMALLEST_GRID && asking_finest(width) <= COARSER_SHARE * surface_area {
         width /= 2;
@@ -101,6 +102,9 @@ mod tests {
     use super::*;
     use glam::DVec2;
     use std::f64::consts::PI;
+
+    /// The default surfels per ball.
+    const PER_BALL: f64 = 256.0;
 
     /// `n` equal faces of a unit sphere's area on half the unit square, the `stretched` share of
     /// them twice as long along one side as the others (at the same area).
@@ -121,10 +125,10 @@ mod tests {
         // width W when log2(W r sqrt(pi / 256) / sigma_1) rounds to 0 or below.
         let uniform = sphere_faces(100, 0.0);
         let asks_finest =
-            |width: usize, r: f64, sigma1: f64| surfel_level(usize::MAX, sigma1 / width as f64, r, TARGET_SURFELS) == 0;
+            |width: usize, r: f64, sigma1: f64| surfel_level(usize::MAX, sigma1 / width as f64, r, PER_BALL) == 0;
         let side = (8.0 * PI).sqrt();
         for (r, expected) in [(1.0, 128), (0.2, 256), (0.15, 256), (0.1, 512), (0.05, 512)] {
-            let width = grid_width(&uniform, r, 512);
+            let width = grid_width(&uniform, (r, PER_BALL), 512);
             assert_eq!(width, expected, "r = {r}");
             // The grid's finest level is asked for, or it is the smallest or largest grid.
             assert!(width == 128 || width == 512 || asks_finest(width, r, side), "r = {r}");
@@ -138,18 +142,28 @@ mod tests {
         // At r = 0.15 the mean-size faces ask for level 1 of the 512² grid and the faces twice as
         // long for its level 0.
         let side = (8.0 * PI).sqrt();
-        assert_eq!(surfel_level(usize::MAX, side / 512.0, 0.15, TARGET_SURFELS), 1);
-        assert_eq!(surfel_level(usize::MAX, 2.0_f64.sqrt() * side / 512.0, 0.15, TARGET_SURFELS), 0);
-        assert_eq!(grid_width(&sphere_faces(100, 0.2), 0.15, 512), 256);
-        assert_eq!(grid_width(&sphere_faces(100, 0.3), 0.15, 512), 512);
+        assert_eq!(surfel_level(usize::MAX, side / 512.0, 0.15, PER_BALL), 1);
+        assert_eq!(surfel_level(usize::MAX, 2.0_f64.sqrt() * side / 512.0, 0.15, PER_BALL), 0);
+        assert_eq!(grid_width(&sphere_faces(100, 0.2), (0.15, PER_BALL), 512), 256);
+        assert_eq!(grid_width(&sphere_faces(100, 0.3), (0.15, PER_BALL), 512), 512);
+    }
+
+    #[test]
+    fn more_surfels_per_ball_take_a_wider_grid() {
+        // The mean-size grid is sqrt(8 n) / r texels wide for n surfels per ball.
+        let uniform = sphere_faces(100, 0.0);
+        assert_eq!(grid_width(&uniform, (0.2, 64.0), 512), 128);
+        assert_eq!(grid_width(&uniform, (0.2, PER_BALL), 512), 256);
+        assert_eq!(grid_width(&uniform, (0.2, 1024.0), 512), 512);
     }
 
     #[test]
     fn a_degenerate_mesh_or_radius_takes_the_largest_grid() {
         let faces = sphere_faces(10, 0.0);
-        assert_eq!(grid_width(&faces, f64::NAN, 1024), 1024);
-        assert_eq!(grid_width(&[], 0.2, 1024), 1024);
-        assert_eq!(grid_width(&faces, 1.0, 64), 64);
+        assert_eq!(grid_width(&faces, (f64::NAN, PER_BALL), 1024), 1024);
+        assert_eq!(grid_width(&[], (0.2, PER_BALL), 1024), 1024);
+        assert_eq!(grid_width(&faces, (1.0, PER_BALL), 64), 64);
+        assert_eq!(grid_width(&faces, (0.2, 0.0), 1024), 1024);
     }
 
     #[test]

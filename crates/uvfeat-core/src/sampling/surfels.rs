@@ -8,8 +8,8 @@
 //! set of surfels reached from the centre's through neighbouring texels of a chart and across
 //! seams while inside the ball, as the object-space reference's search over edges does.
 //!
-//! The level of the pyramid is the coarsest whose ball holds about [`TARGET_SURFELS`], so the cost
-//! does not grow with the radius. A surfel's weight ramps linearly over one surfel width across
+//! The level of the pyramid is the coarsest whose ball holds about the settings' surfels per ball
+//! (`samples`, 256 by default), so the cost does not grow with the radius. A surfel's weight ramps linearly over one surfel width across
 //! the ball's edge, centred so that a plane's disk weighs exactly `pi r^2` (as the shared lattice's
 //! ramp, DESIGN.md §1.4.7).
 //!
@@ -26,11 +26,6 @@ use crate::raster::{Surface, SurfelLevel, SurfelPoint, Surfels};
 use crate::stamps::Stamps;
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
-
-/// Surfels the level is chosen to hold in a plane's ball (fewer only at the finest level): the
-/// cost of a ball, and its quadrature error, which is a few tenths of a percent of H's range on the
-/// shared scans at 256 (halving it from 512 halved the cost at r = 4-8 % and added up to 0.2 %).
-pub(super) const TARGET_SURFELS: f64 = 256.0;
 
 thread_local! {
     /// The surfels reached by the current search (per thread: no allocation per neighbourhood).
@@ -76,8 +71,14 @@ pub fn gather_surfels(
     let mut counts = SampleCounts::default();
     let w = atlas.resolution() as f64;
     let texels = (centre.distortion.sigma1 / w, centre.distortion.area_element().sqrt() / w);
-    let Some(ball) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, settings.radius, ramp_centre)
-    else {
+    let Some(ball) = SurfelBall::new(
+        atlas,
+        surfels,
+        (centre.uv, centre.chart),
+        texels,
+        (settings.radius, settings.surfels_per_ball),
+        ramp_centre,
+    ) else {
         return counts;
     };
     let level = &surfels.levels[ball.level];
@@ -112,7 +113,7 @@ pub fn gather_surfels(
 /// ramp across the ball's edge.
 #[derive(Debug, Clone, Copy)]
 pub struct SurfelBall {
-    /// The level whose surfels put about [`TARGET_SURFELS`] in the ball.
+    /// The level whose surfels put about the asked number in the ball.
     pub level: usize,
     /// The surfel of that level holding the centre.
     pub start: u32,
@@ -124,7 +125,8 @@ pub struct SurfelBall {
 impl SurfelBall {
     /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is up to
     /// `texels.0` long and `texels.1` on the side of its area (`sigma_1 / W`, `sqrt(sigma_1
-    /// sigma_2) / W`). `None` where neither the point's texel nor its eight neighbours hold a
+    /// sigma_2) / W`), summed at the level that puts about `per_ball` surfels in a plane's ball
+    /// (fewer only at the finest level). `None` where neither the point's texel nor its eight neighbours hold a
     /// surfel of its chart (the centre of a gutter texel lies just off its chart). `centring`
     /// places the ramp (its width in units of `r` to its centre): [`ramp_centre`] where the
     /// samples' areas are read (a plane's disk weighs exactly `pi r^2`),
@@ -134,12 +136,12 @@ impl SurfelBall {
         surfels: &Surfels,
         (uv, chart): (DVec2, i32),
         texels: (f64, f64),
-        radius: f64,
+        (radius, per_ball): (f64, f64),
         centring: fn(f64) -> f64,
     ) -> Option<Self> {
         let finest = surfels.levels.first()?;
         let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
-        let level = surfel_level(surfels.levels.len(), texels.0, radius, TARGET_SURFELS);
+        let level = surfel_level(surfels.levels.len(), texels.0, radius, per_ball);
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
         let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
         let edge = radius * centring(width / radius);

@@ -17,7 +17,10 @@ pub struct ComputeSettings {
     pub features: Vec<Feature>,
     /// Neighbourhood radius `r` in object units.
     pub radius: f64,
-    /// Samples per pixel `N` (256).
+    /// Samples per neighbourhood `N` (256): the pattern's points per pixel, or with the surfels
+    /// about as many surfels per ball, whose quadrature error is a few tenths of a percent of H's
+    /// range on the shared scans at 256 (half as many: 0.4-0.6x the time at r = 4-8 %, the dragon's
+    /// H up to 0.4 % more; docs/BENCHMARKS.md).
     pub samples: usize,
     /// Computation texture size `W_c` (512).
     pub resolution: usize,
@@ -193,6 +196,7 @@ impl ComputeSettings {
                     && self.features.iter().any(|f| f.uses_gaussian_curvature())),
             overlaps: self.overlaps,
             surface: self.surface,
+            surfels_per_ball: self.samples as f64,
         }
     }
 
@@ -207,7 +211,12 @@ impl ComputeSettings {
 
     /// What the surfels' moment sums read (DESIGN.md §1.4.9).
     pub fn surfel_sums(&self) -> SurfelSumSettings {
-        SurfelSumSettings { stats: self.stats(), surface: self.surface, with_normals: self.sampler().with_normals }
+        SurfelSumSettings {
+            stats: self.stats(),
+            surface: self.surface,
+            with_normals: self.sampler().with_normals,
+            surfels_per_ball: self.samples as f64,
+        }
     }
 
     /// Estimator part of the settings.
