@@ -89,9 +89,11 @@ def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp
         assert main(["compute", str(path), *options, "--radius", radii, *named, "--out", str(tmp_path / kind)]) == 0
     mesh = uvfeat.load(str(path))
     assert mesh.n_charts > 1
-    expected = uvfeat.compute(mesh, "mean_curvature", "10%")["mean_curvature"]
+    # --samples sets the surfels per ball, as in uvfeat.compute.
+    expected = uvfeat.compute(mesh, "mean_curvature", "10%", samples=64)["mean_curvature"]
+    assert not np.array_equal(expected, uvfeat.compute(mesh, "mean_curvature", "10%")["mean_curvature"])
     # Several radii take the surfel grid of the smallest, as uvfeat.compute.
-    beside = uvfeat.compute(mesh, "mean_curvature", ["10%", "5%"])["mean_curvature"][0]
+    beside = uvfeat.compute(mesh, "mean_curvature", ["10%", "5%"], samples=64)["mean_curvature"][0]
     for kind, values in [("default", expected), ("both", beside)]:
         np.testing.assert_array_equal(np.load(tmp_path / kind / "per_vertex_r10pct.npz")["mean_curvature"], values)
     from_maps = np.load(tmp_path / "pattern" / "per_vertex_r10pct.npz")["mean_curvature"]
@@ -99,7 +101,7 @@ def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp
 
     # One radius: the maps on the sums' own atlas; with a smaller radius beside it, on the 1024² one.
     load = lambda kind, tag: np.load(tmp_path / kind / f"mean_curvature_r{tag}.npy")
-    sums_atlas = uvfeat.Atlas(mesh, resolution=surfel_resolution(mesh, "10%"))
+    sums_atlas = uvfeat.Atlas(mesh, resolution=surfel_resolution(mesh, "10%", 64))
     np.testing.assert_array_equal(load("default", "10pct"), sums_atlas.vertex_texture(expected, 64))
     np.testing.assert_array_equal(load("both", "10pct"), uvfeat.Atlas(mesh).vertex_texture(beside, 64))
     np.testing.assert_array_equal(load("both", "5pct"), load("pattern", "5pct"))
@@ -112,7 +114,7 @@ def test_compute_command_writes_the_default_per_vertex_values_of_many_charts(tmp
     # Named surfels: the values at the vertices too, as uvfeat.compute gives them.
     assert main(["compute", str(path), *options, "--radius", "10%", "--quadrature", "surfels",
                  "--out", str(tmp_path / "surfels")]) == 0
-    named = uvfeat.compute(mesh, "mean_curvature", "10%", quadrature="surfels")["mean_curvature"]
+    named = uvfeat.compute(mesh, "mean_curvature", "10%", quadrature="surfels", samples=64)["mean_curvature"]
     np.testing.assert_array_equal(np.load(tmp_path / "surfels" / "per_vertex_r10pct.npz")["mean_curvature"], named)
 
 
