@@ -222,9 +222,9 @@ class Atlas:
             :mod:`uvfeat.vertex_radii`).
         samples : int
             Samples per neighbourhood (>= 4): the pattern's points per texel, or with
-            ``quadrature="surfels"`` about as many surfels per ball (the pyramid level summed; half
-            as many take about half the time and add a few tenths of a percent of the range to H and
-            K on a detailed scan, docs/BENCHMARKS.md).
+            ``quadrature="surfels"`` about as many surfels per ball (the pyramid level summed: on
+            the shared scans a quarter as many take 0.4-0.8x the time from r = 2 % and add up to
+            0.6 % of the range to H's error, 0.7 % to K's; docs/BENCHMARKS.md).
         compute_resolution : int
             Size ``W_c`` of the computation texture.
         adaptive : bool

@@ -18,9 +18,10 @@ pub struct ComputeSettings {
     /// Neighbourhood radius `r` in object units.
     pub radius: f64,
     /// Samples per neighbourhood `N` (256): the pattern's points per pixel, or with the surfels
-    /// about as many surfels per ball, whose quadrature error is a few tenths of a percent of H's
-    /// range on the shared scans at 256 (half as many: 0.4-0.6x the time at r = 4-8 %, the dragon's
-    /// H up to 0.4 % more; docs/BENCHMARKS.md).
+    /// about as many surfels per ball (the pyramid level summed), whose quadrature error is a few
+    /// tenths of a percent of H's range on the shared scans at 256 (docs/BENCHMARKS.md gives the
+    /// trade: a quarter as many take 0.4-0.8x the time from r = 2 % and add up to 0.6 % to H's
+    /// error, 0.7 % to K's).
     pub samples: usize,
     /// Computation texture size `W_c` (512).
     pub resolution: usize,
