@@ -219,8 +219,8 @@ impl SurfelLevel {
     }
 
     /// The surfels `range` (a block) as `(chart, component, surfel)` in that order, where the
-    /// components join adjacent surfels for which `same` holds, each named by its smallest surfel.
-    fn joined(&self, range: std::ops::Range<usize>, same: impl Fn(usize, usize) -> bool) -> Vec<(i32, u32, u32)> {
+    /// components join adjacent surfels of one chart, each named by its smallest surfel.
+    fn joined(&self, range: std::ops::Range<usize>) -> Vec<(i32, u32, u32)> {
         let first = range.start;
         let mut root: Vec<u32> = range.clone().map(|s| s as u32).collect();
         fn find(root: &mut [u32], first: usize, mut s: u32) -> u32 {
@@ -232,7 +232,7 @@ impl SurfelLevel {
         }
         for s in range.clone() {
             for &t in self.neighbours(s as u32) {
-                if range.contains(&(t as usize)) && same(s, t as usize) {
+                if range.contains(&(t as usize)) && self.chart[s] == self.chart[t as usize] {
                     let (a, b) = (find(&mut root, first, s as u32), find(&mut root, first, t));
                     root[(a.max(b)) as usize - first] = a.min(b);
                 }
@@ -264,9 +264,7 @@ impl SurfelLevel {
             .flat_map_iter(|block| {
                 let t = key(block[0]).0 as usize;
                 let z = morton(t % width, t / width);
-                self.joined(block[0]..block[1], |s, t| key(s) == key(t))
-                    .into_iter()
-                    .map(move |(chart, root, s)| (z, chart, root, s))
+                self.joined(block[0]..block[1]).into_iter().map(move |(chart, root, s)| (z, chart, root, s))
             })
             .collect();
         let mut owner = vec![0u32; order.len()];
