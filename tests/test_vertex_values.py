@@ -131,6 +131,9 @@ def test_samples_sets_the_surfels_per_ball():
               for n in (32, 256)}
     for name in HK:
         assert 1.5 * errors[256][name] < errors[32][name] < 0.01, (name, errors)
+    # So few that a ball sums a handful: the warning names samples.
+    with pytest.warns(uvfeat.NeighbourhoodWarning, match="samples=4 sums about that many surfels"):
+        uvfeat.compute(mesh, HK, "6%", samples=4, **SURFELS)
     # A kept atlas sums as many: the 512² pyramid, its levels chosen for each count.
     atlas = uvfeat.Atlas(mesh, resolution=512)
     few, default = (atlas.per_vertex(HK, "6%", samples=n, **SURFELS) for n in (32, 256))

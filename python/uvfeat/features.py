@@ -307,7 +307,7 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
         texts += notes(counts, atlas.mesh.n_vertices, label)
         few = int(np.count_nonzero((summed > 0) & (summed < FEW_SURFELS)))
-        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution)
+        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution, samples)
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
     values = {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}
@@ -321,14 +321,18 @@ NAN_WHERE_FLAT = ("shape_index",)
 FEW_SURFELS = 8
 
 
-def _coarse_ball_notes(few: int, n_vertices: int, scale: str, resolution: int) -> list[str]:
+def _coarse_ball_notes(few: int, n_vertices: int, scale: str, resolution: int, samples: int) -> list[str]:
     """The note for ``few`` vertices whose balls summed fewer than :data:`FEW_SURFELS` surfels
-    (balls with none took the object-space reference's values: ``_fill_empty_balls``)."""
+    (balls with none took the object-space reference's values: ``_fill_empty_balls``): ``samples``
+    asked for so few (a ball sums half to twice as many), or the radius spans about a texel."""
     if not few:
         return []
-    return [f"{scale}, {vertex_share(few, n_vertices)} summed fewer than {FEW_SURFELS} surfels: the radius spans about a texel of the "
-            f"{resolution}² grid there and their values are coarse (a finer resolution, or uvfeat.reference, "
-            "serves such radii)"]
+    share = f"{scale}, {vertex_share(few, n_vertices)} summed fewer than {FEW_SURFELS} surfels"
+    if samples < 2 * FEW_SURFELS:
+        return [f"{share}: samples={samples} sums about that many surfels per ball and their values are coarse "
+                "(raise samples)"]
+    return [f"{share}: the radius spans about a texel of the {resolution}² grid there and their values are coarse "
+            "(a finer resolution, or uvfeat.reference, serves such radii)"]
 
 
 def _reference_of(mesh):
