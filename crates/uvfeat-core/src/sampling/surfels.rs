@@ -120,6 +120,8 @@ pub struct SurfelBall {
     /// Weights fall linearly from 1 at `ramp.0` to 0 at `ramp.1`: one surfel wide, centred as
     /// the caller asks ([`SurfelBall::new`]).
     pub ramp: (f64, f64),
+    /// The ball's radius: the search goes on only from surfels inside it ([`SurfelBall::search`]).
+    pub radius: f64,
 }
 
 impl SurfelBall {
@@ -145,12 +147,12 @@ impl SurfelBall {
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
         let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
         let edge = radius * centring(width / radius);
-        Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0) })
+        Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0), radius })
     }
 
     /// Runs `visit(s, distance)` on every surfel `s` of `level` (this ball's) whose centroid is
-    /// within the ramp's outer edge of `centre` and connected to the start through such surfels,
-    /// breadth first, as the reference's search over edges.
+    /// within the ramp's outer edge of `centre` and adjacent to the start or to a surfel connected
+    /// to it through surfels inside the ball, breadth first, as the reference's search over edges.
     pub fn search(&self, level: &SurfelLevel, centre: DVec3, mut visit: impl FnMut(u32, f64)) {
         let outer = self.ramp.1;
         REACHED.with_borrow_mut(|(reached, queue)| {
@@ -171,10 +173,16 @@ impl SurfelBall {
                 if distance2 >= outer * outer {
                     continue;
                 }
-                for &t in level.neighbours(s) {
-                    let new = reached.insert(t);
-                    queue[len] = t;
-                    len += usize::from(new);
+                // Only surfels inside the ball lead on (the centre's always): the ramp's outer
+                // half would join sheets that meet just outside the ball, such as the two sides
+                // of a thin part, which the reference's search over edges keeps apart (on the
+                // dragon at r = 4 %, ten such vertices 13-29 % off made 43 % of H's error).
+                if distance2 < self.radius * self.radius || s == self.start {
+                    for &t in level.neighbours(s) {
+                        let new = reached.insert(t);
+                        queue[len] = t;
+                        len += usize::from(new);
+                    }
                 }
                 visit(s, distance2.sqrt());
             }
