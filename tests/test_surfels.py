@@ -87,6 +87,22 @@ def test_a_folded_sheet_counts_the_other_side_only_where_the_fold_joins_them():
     assert np.mean(np.abs(values[inner] - truth["mean_curvature"][inner])) < 0.005 * np.ptp(truth["mean_curvature"][inner])
 
 
+def test_sheets_that_meet_just_outside_the_ball_stay_apart():
+    # At r = 0.1733 the ball of a vertex 0.15 before the fold holds the other sheet and both ends of
+    # the fold's half cylinder, whose middle (0.1768 away) lies just outside it: inside the ball the
+    # sheets are apart, and the reference sees one flat sheet (|H| < 0.02). A search that went on
+    # from the surfels of the ramp's outer half (up to half a surfel beyond r) joined them: H -3.05.
+    mesh = folded_sheet()
+    radius = 0.1733
+    p = mesh.positions
+    column = (np.abs(p[:, 0] - 0.85) < 1e-9) & (p[:, 2] == 0) & (p[:, 1] > radius) & (p[:, 1] < 0.6 - radius)
+    assert column.sum() > 10
+    reference = uvfeat.reference.compute(mesh, "mean_curvature", radius=radius)["mean_curvature"][column]
+    for options in ({}, {"quadrature": "surfels", "surface": "facets"}):
+        values = uvfeat.compute(mesh, "mean_curvature", radius, **options)["mean_curvature"][column]
+        assert np.max(np.abs(values - reference)) < 0.1, (options, values, reference)  # measured 0.02
+
+
 def test_same_results_with_one_and_two_threads(tmp_path):
     script = (
         "import sys, numpy as np, uvfeat\n"
