@@ -21,7 +21,7 @@ const SMALLEST_GRID: usize = 128;
 /// half the width. On the shared meshes at r = 4 % the faces asking for the finest level of the
 /// mean-size grid cover 7-16 % of the surface on the meshes of fewer than 300 charts, where half
 /// the grid moved H and K by at most 0.04 % of their range in 0.35-0.75x the time, and 40 % on the
-/// 1,119-chart dragon, whose fragments need the surfels (H 0.55 -> 0.74 %).
+/// 1,119-chart dragon, whose fragments need the surfels (H 0.29 -> 0.44 %).
 const COARSER_SHARE: f64 = 0.25;
 
 /// What the grid rule reads of one face.
