@@ -23,9 +23,9 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     A mesh without UVs gets uvfeat's automatic atlas. On an atlas of more than one chart (that one,
     or the mesh's own) each vertex is the centre of its own ball over the surfels by default
     (``quadrature="surfels"``, about ``samples`` surfels per ball; the pattern's options,
-    ``sampling``, ``margin`` ..., do not apply then), unless ``options`` name ``quadrature`` or ``query`` or ask for what the sums do
-    not serve (``method="fit"``, ``adaptive``, ``standard_error``, the geodesic methods,
-    ``paper_mode``): then the maps are read. The sums run on uvfeat's own atlas even where the mesh
+    ``sampling``, ``margin`` ..., do not apply then), unless ``options`` name ``quadrature`` or
+    ``query`` or ask for what the sums do not serve (``method="fit"``, ``adaptive``,
+    ``standard_error``, the geodesic methods, ``paper_mode``): then the maps are read. The sums run on uvfeat's own atlas even where the mesh
     has UVs of its own (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the
     surface into few texels; uvfeat's gives every chart one texel size), and a vertex whose ball
     holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for

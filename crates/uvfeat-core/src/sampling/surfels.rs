@@ -9,9 +9,9 @@
 //! seams while inside the ball, as the object-space reference's search over edges does.
 //!
 //! The level of the pyramid is the coarsest whose ball holds about the settings' surfels per ball
-//! (`samples`, 256 by default), so the cost does not grow with the radius. A surfel's weight ramps linearly over one surfel width across
-//! the ball's edge, centred so that a plane's disk weighs exactly `pi r^2` (as the shared lattice's
-//! ramp, DESIGN.md §1.4.7).
+//! (`samples`, 256 by default), so the cost does not grow with the radius. A surfel's weight ramps
+//! linearly over one surfel width across the ball's edge, centred so that a plane's disk weighs
+//! exactly `pi r^2` (as the shared lattice's ramp, DESIGN.md §1.4.7).
 //!
 //! The surface summed is the triangle lookup's smooth surface through the vertex normals (DESIGN.md
 //! §1.3.6), as for the pattern's samples, or with `surface = "facets"` the mesh's own facets, as
@@ -128,10 +128,10 @@ impl SurfelBall {
     /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is up to
     /// `texels.0` long and `texels.1` on the side of its area (`sigma_1 / W`, `sqrt(sigma_1
     /// sigma_2) / W`), summed at the level that puts about `per_ball` surfels in a plane's ball
-    /// (fewer only at the finest level). `None` where neither the point's texel nor its eight neighbours hold a
-    /// surfel of its chart (the centre of a gutter texel lies just off its chart). `centring`
-    /// places the ramp (its width in units of `r` to its centre): [`ramp_centre`] where the
-    /// samples' areas are read (a plane's disk weighs exactly `pi r^2`),
+    /// (fewer only at the finest level). `None` where neither the point's texel nor its eight
+    /// neighbours hold a surfel of its chart (the centre of a gutter texel lies just off its
+    /// chart). `centring` places the ramp (its width in units of `r` to its centre):
+    /// [`ramp_centre`] where the samples' areas are read (a plane's disk weighs exactly `pi r^2`),
     /// [`moment_ramp_centre`](super::moment_ramp_centre) where only ratios of their moments are.
     pub fn new(
         atlas: &Atlas,
