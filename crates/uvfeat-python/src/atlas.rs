@@ -49,7 +49,7 @@ pub fn surfel_grid_width(
 ) -> PyResult<usize> {
     let positions = positions_of(&positions)?;
     let topology = &topology.inner;
-    guarded(py, || Ok(uvfeat_core::sampling::surfel_grid_width(topology, &positions, (radius, per_ball), largest)))
+    guarded(py, || Ok(uvfeat_core::sampling::surfel_grid_width(topology, &positions, radius, per_ball, largest)))
 }
 
 #[pymethods]

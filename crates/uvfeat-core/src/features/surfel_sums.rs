@@ -91,8 +91,8 @@ pub fn surfel_sums(
     let mut sums = BallSums::default();
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
-    let per_ball = (r, settings.surfels_per_ball);
-    let Some(search) = SurfelBall::new(atlas, surfels, (centre.uv, centre.chart), texels, per_ball, moment_ramp_centre)
+    let at = (centre.uv, centre.chart);
+    let Some(search) = SurfelBall::new(atlas, surfels, at, texels, r, settings.surfels_per_ball, moment_ramp_centre)
     else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };

@@ -25,6 +25,7 @@ pub use topology::{Topology, TopologyDiagnostics};
 pub use transition::{seam_maps, SeamMap};
 pub(crate) use vertex_sort::compressed_rows;
 pub use weld::weld_positions;
+pub(crate) use weld::{find, union};
 
 use crate::error::{Result, UvfeatError};
 use glam::{DVec2, DVec3};

@@ -15,7 +15,7 @@ use super::morton::morton;
 use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints};
 use crate::cancel;
 use crate::frame::Frame;
-use crate::mesh::Topology;
+use crate::mesh::{find, union, Topology};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -221,25 +221,18 @@ impl SurfelLevel {
     /// The surfels `range` (a block) as `(chart, component, surfel)` in that order, where the
     /// components join adjacent surfels of one chart, each named by its smallest surfel.
     fn joined(&self, range: std::ops::Range<usize>) -> Vec<(i32, u32, u32)> {
+        // Union-find over the block's own surfels, numbered from its first.
         let first = range.start;
-        let mut root: Vec<u32> = range.clone().map(|s| s as u32).collect();
-        fn find(root: &mut [u32], first: usize, mut s: u32) -> u32 {
-            while root[s as usize - first] != s {
-                root[s as usize - first] = root[root[s as usize - first] as usize - first];
-                s = root[s as usize - first];
-            }
-            s
-        }
+        let mut parent: Vec<u32> = (0..range.len() as u32).collect();
         for s in range.clone() {
             for &t in self.neighbours(s as u32) {
                 if range.contains(&(t as usize)) && self.chart[s] == self.chart[t as usize] {
-                    let (a, b) = (find(&mut root, first, s as u32), find(&mut root, first, t));
-                    root[(a.max(b)) as usize - first] = a.min(b);
+                    union(&mut parent, (s - first) as u32, t - first as u32);
                 }
             }
         }
         let mut joined: Vec<(i32, u32, u32)> =
-            range.map(|s| (self.chart[s], find(&mut root, first, s as u32), s as u32)).collect();
+            range.map(|s| (self.chart[s], find(&mut parent, (s - first) as u32) + first as u32, s as u32)).collect();
         joined.sort_unstable();
         joined
     }

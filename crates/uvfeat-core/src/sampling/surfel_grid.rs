@@ -56,7 +56,8 @@ impl FaceScale {
 pub fn surfel_grid_width(
     topology: &Topology,
     positions: &[DVec3],
-    (radius, per_ball): (f64, f64),
+    radius: f64,
+    per_ball: f64,
     largest: usize,
 ) -> usize {
     if positions.len() != topology.vertex_ids.len() {
@@ -69,14 +70,14 @@ pub fn surfel_grid_width(
         .filter_map(|f| FaceScale::new(topology.faces[f].map(position), topology.corner_uvs(f)))
         .collect();
     // A NaN area makes the grid `largest`.
-    grid_width(&faces, (radius, per_ball), largest)
+    grid_width(&faces, radius, per_ball, largest)
 }
 
 /// The surfel grid, a power of two from 128 up to `largest`, for balls of `radius` summed over
 /// about `per_ball` surfels on `faces`: the smallest whose finest surfels, of the mean size, put at
 /// least `per_ball` in a plane's ball, halved while at most [`COARSER_SHARE`] of the surface asks for
 /// its finest level. `largest` where the areas, the radius or `per_ball` are not positive and finite.
-pub fn grid_width(faces: &[FaceScale], (radius, per_ball): (f64, f64), largest: usize) -> usize {
+pub fn grid_width(faces: &[FaceScale], radius: f64, per_ball: f64, largest: usize) -> usize {
     let surface_area: f64 = faces.iter().map(|f| f.area).sum();
     let uv_area: f64 = faces.iter().map(|f| f.uv_area).sum();
     let needed = (per_ball * surface_area / (std::f64::consts::PI * radius * radius * uv_area)).sqrt();
@@ -128,7 +129,7 @@ mod tests {
             |width: usize, r: f64, sigma1: f64| surfel_level(usize::MAX, sigma1 / width as f64, r, PER_BALL) == 0;
         let side = (8.0 * PI).sqrt();
         for (r, expected) in [(1.0, 128), (0.2, 256), (0.15, 256), (0.1, 512), (0.05, 512)] {
-            let width = grid_width(&uniform, (r, PER_BALL), 512);
+            let width = grid_width(&uniform, r, PER_BALL, 512);
             assert_eq!(width, expected, "r = {r}");
             // The grid's finest level is asked for, or it is the smallest or largest grid.
             assert!(width == 128 || width == 512 || asks_finest(width, r, side), "r = {r}");
@@ -144,26 +145,26 @@ mod tests {
         let side = (8.0 * PI).sqrt();
         assert_eq!(surfel_level(usize::MAX, side / 512.0, 0.15, PER_BALL), 1);
         assert_eq!(surfel_level(usize::MAX, 2.0_f64.sqrt() * side / 512.0, 0.15, PER_BALL), 0);
-        assert_eq!(grid_width(&sphere_faces(100, 0.2), (0.15, PER_BALL), 512), 256);
-        assert_eq!(grid_width(&sphere_faces(100, 0.3), (0.15, PER_BALL), 512), 512);
+        assert_eq!(grid_width(&sphere_faces(100, 0.2), 0.15, PER_BALL, 512), 256);
+        assert_eq!(grid_width(&sphere_faces(100, 0.3), 0.15, PER_BALL, 512), 512);
     }
 
     #[test]
     fn more_surfels_per_ball_take_a_wider_grid() {
         // The mean-size grid is sqrt(8 n) / r texels wide for n surfels per ball.
         let uniform = sphere_faces(100, 0.0);
-        assert_eq!(grid_width(&uniform, (0.2, 64.0), 512), 128);
-        assert_eq!(grid_width(&uniform, (0.2, PER_BALL), 512), 256);
-        assert_eq!(grid_width(&uniform, (0.2, 1024.0), 512), 512);
+        assert_eq!(grid_width(&uniform, 0.2, 64.0, 512), 128);
+        assert_eq!(grid_width(&uniform, 0.2, PER_BALL, 512), 256);
+        assert_eq!(grid_width(&uniform, 0.2, 1024.0, 512), 512);
     }
 
     #[test]
     fn a_degenerate_mesh_or_radius_takes_the_largest_grid() {
         let faces = sphere_faces(10, 0.0);
-        assert_eq!(grid_width(&faces, (f64::NAN, PER_BALL), 1024), 1024);
-        assert_eq!(grid_width(&[], (0.2, PER_BALL), 1024), 1024);
-        assert_eq!(grid_width(&faces, (1.0, PER_BALL), 64), 64);
-        assert_eq!(grid_width(&faces, (0.2, 0.0), 1024), 1024);
+        assert_eq!(grid_width(&faces, f64::NAN, PER_BALL, 1024), 1024);
+        assert_eq!(grid_width(&[], 0.2, PER_BALL, 1024), 1024);
+        assert_eq!(grid_width(&faces, 1.0, PER_BALL, 64), 64);
+        assert_eq!(grid_width(&faces, 0.2, 0.0, 1024), 1024);
     }
 
     #[test]

@@ -76,7 +76,8 @@ pub fn gather_surfels(
         surfels,
         (centre.uv, centre.chart),
         texels,
-        (settings.radius, settings.surfels_per_ball),
+        settings.radius,
+        settings.surfels_per_ball,
         ramp_centre,
     ) else {
         return counts;
@@ -138,7 +139,8 @@ impl SurfelBall {
         surfels: &Surfels,
         (uv, chart): (DVec2, i32),
         texels: (f64, f64),
-        (radius, per_ball): (f64, f64),
+        radius: f64,
+        per_ball: f64,
         centring: fn(f64) -> f64,
     ) -> Option<Self> {
         let finest = surfels.levels.first()?;
