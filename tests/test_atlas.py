@@ -85,6 +85,20 @@ def test_update_recomputes_the_buffers_and_keeps_the_coverage(torus_atlas):
         atlas.update(np.full_like(mesh.positions, np.nan))
 
 
+def test_coverage_on_first_use_gives_the_same_values_views_and_maps():
+    mesh = uvfeat.shapes.torus(2.0, 0.5, 48, 24).with_atlas()
+    eager, deferred = (uvfeat.Atlas(mesh, 128, coverage_on_first_use=later) for later in (False, True))
+    hk = ["mean_curvature", "gaussian_curvature"]
+    for feature, values in deferred.per_vertex(hk, "10%").items():
+        np.testing.assert_array_equal(values, eager.per_vertex(hk, "10%")[feature])
+    np.testing.assert_array_equal(deferred.chart, eager.chart)
+    np.testing.assert_array_equal(deferred.face, eager.face)
+    np.testing.assert_array_equal(deferred.position, eager.position)
+    maps = deferred.compute("mean_curvature", "10%", compute_resolution=64, seed=1)["mean_curvature"]
+    np.testing.assert_array_equal(maps.texture, eager.compute("mean_curvature", "10%", compute_resolution=64,
+                                                              seed=1)["mean_curvature"].texture)
+
+
 def test_a_mesh_too_large_for_the_memory_budget_is_refused_before_anything_is_built(monkeypatch):
     mesh = uvfeat.shapes.torus(2.0, 0.5, 320, 160)  # 102,400 faces: about 31 MiB of per-face tables
     monkeypatch.setattr(uvfeat.atlas, "memory_budget", lambda: 20 << 20)

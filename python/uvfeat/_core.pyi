@@ -115,6 +115,7 @@ class Atlas:
         resolution: int = 1024,
         precision: str = "f32",
         memory_budget: int = ...,
+        coverage_on_first_use: bool = False,
     ) -> Atlas: ...
     def update(self, positions: NDArray[np.float64]) -> None: ...
     @property

@@ -96,6 +96,11 @@ class Atlas:
     precision : {"f32", "f16"}
         Storage of positions and normals; ``"f16"`` rounds them to half floats as the paper's GPU
         textures do (Table 2), and the views are then float16.
+    coverage_on_first_use : bool, default False
+        Rasterise which face each texel shows when something first reads it, not while the atlas
+        is built: for an atlas that serves only :meth:`per_vertex` on many charts (the values at the
+        vertices read the surfels, never the texels), as :func:`uvfeat.compute` builds it. The
+        maps and texel views then pay for it on their first call.
 
     Raises
     ------
@@ -106,7 +111,8 @@ class Atlas:
         says how much they would take).
     """
 
-    def __init__(self, mesh: Mesh, resolution: int = 1024, precision: str = "f32"):
+    def __init__(self, mesh: Mesh, resolution: int = 1024, precision: str = "f32", *,
+                 coverage_on_first_use: bool = False):
         mesh = as_mesh(mesh)
         resolution = check_resolution(resolution)
         if precision not in PRECISIONS:
@@ -123,7 +129,8 @@ class Atlas:
         topology = mesh.topology
         self.timings = {"preprocessing_s": time.perf_counter() - started}
         started = time.perf_counter()
-        self._core = _core.Atlas(topology, mesh.positions, resolution, precision, budget)
+        self._core = _core.Atlas(topology, mesh.positions, resolution, precision, budget,
+                                 coverage_on_first_use=bool(coverage_on_first_use))
         self.timings["rasterisation_s"] = time.perf_counter() - started
 
     # -- configuration ------------------------------------------------------------------------

@@ -115,7 +115,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     if sums is not None:
         mesh = sums_mesh(mesh, names, named, paper_mode=False)
         resolution = sums_resolution(mesh, radius, resolution, samples)
-    atlas = Atlas(mesh, resolution=resolution)
+    atlas = Atlas(mesh, resolution=resolution, coverage_on_first_use=sums is not None)
     started = time.perf_counter()
     atlas.update(mesh.positions)
     buffers_s = time.perf_counter() - started

@@ -45,11 +45,11 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     if not mesh.has_uvs:
         # Packed for the atlas resolution `load` unwraps at, so that both share the cached unwrap.
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)
+    surfels = vertex_sums_options(mesh, features, options, paper_mode) is not None
     if resolution is None:
-        surfels = vertex_sums_options(mesh, features, options, paper_mode) is not None
         samples = options.get("samples", ARGUMENT_DEFAULTS["samples"])
         resolution = surfel_resolution(mesh, radius, samples) if surfels else ATLAS_RESOLUTION
     if paper_mode:
         precision = "f16"
-    atlas = Atlas(mesh, resolution=resolution, precision=precision)
+    atlas = Atlas(mesh, resolution=resolution, precision=precision, coverage_on_first_use=surfels)
     return source.to_points(atlas.per_vertex(features, radius, paper_mode=paper_mode, **options))

@@ -8,6 +8,7 @@ use crate::frame::Frame;
 use crate::mesh::Topology;
 use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision, Surface, Surfels};
 use glam::{DVec2, DVec3};
+use once_cell::sync::OnceCell;
 use std::sync::{Arc, OnceLock};
 
 /// Largest accepted buffer resolution (texels per side).
@@ -22,11 +23,14 @@ pub struct AtlasOptions {
     pub precision: Precision,
     /// Largest number of bytes the buffers may take.
     pub memory_budget: u64,
+    /// Rasterise the coverage on its first use instead of beside the frame (an atlas for the
+    /// values at the vertices, which read only the surfels).
+    pub coverage_on_first_use: bool,
 }
 
 impl Default for AtlasOptions {
     fn default() -> Self {
-        Self { resolution: 1024, precision: Precision::F32, memory_budget: 8 << 30 }
+        Self { resolution: 1024, precision: Precision::F32, memory_budget: 8 << 30, coverage_on_first_use: false }
     }
 }
 
@@ -35,15 +39,20 @@ impl Default for AtlasOptions {
 pub struct Atlas {
     /// Pre-processing shared by all frames (and by atlases of other resolutions).
     pub topology: Arc<Topology>,
-    /// Which surface point each texel shows (UV-only, reused by all frames).
-    pub coverage: Coverage,
+    /// Texels per side.
+    resolution: usize,
+    /// Which surface point each texel shows (UV-only, reused by all frames; see
+    /// [`Atlas::coverage`]).
+    coverage: OnceCell<Coverage>,
+    /// What [`Atlas::coverage`] gives while a stop request cuts its rasterisation short.
+    stopped_coverage: OnceCell<Coverage>,
     /// Per-frame mesh quantities.
     pub frame: Frame,
     /// Per-frame geometry buffers, evaluated on first use (see [`Atlas::buffers`]).
     buffers: OnceLock<GeometryBuffers>,
     /// Per-frame surfel pyramids on the smooth surface and on the facets, built on first use (see
     /// [`Atlas::surfels`]).
-    surfels: [OnceLock<Surfels>; 2],
+    surfels: [OnceCell<Surfels>; 2],
     /// Per-frame compact surface patches of the faces (the sampler's fast path).
     pub patches: FacePatches,
     /// Storage precision of positions and normals.
@@ -58,23 +67,27 @@ impl Atlas {
     /// would take), and the position errors of [`Frame::new`].
     pub fn new(topology: Arc<Topology>, positions: &[DVec3], options: &AtlasOptions) -> Result<Self> {
         check_resolution(options)?;
+        let frame_and_patches = || {
+            let frame = Frame::new(&topology, positions)?;
+            cancel::check()?;
+            let patches = FacePatches::new(&topology, &frame);
+            Ok((frame, patches))
+        };
         // The coverage depends on the UVs only: it is rasterised while the frame and its face
         // patches are evaluated, so that the one-thread parts of each overlap (the patches built
         // after the join left one core idle for 20-30 ms of a 200K-face mesh's atlas).
-        let (frame, coverage) = rayon::join(
-            || {
-                let frame = Frame::new(&topology, positions)?;
-                cancel::check()?;
-                let patches = FacePatches::new(&topology, &frame);
-                Ok((frame, patches))
-            },
-            || Coverage::build(&topology, options.resolution),
-        );
-        let (frame, patches) = frame?;
+        let ((frame, patches), coverage) = if options.coverage_on_first_use {
+            (frame_and_patches()?, OnceCell::new())
+        } else {
+            let (frame, coverage) = rayon::join(frame_and_patches, || Coverage::build(&topology, options.resolution));
+            (frame?, OnceCell::with_value(coverage))
+        };
         cancel::check()?;
         Ok(Self {
             topology,
+            resolution: options.resolution,
             coverage,
+            stopped_coverage: OnceCell::new(),
             frame,
             buffers: OnceLock::new(),
             surfels: Default::default(),
@@ -83,13 +96,26 @@ impl Atlas {
         })
     }
 
+    /// Which surface point each texel shows (DESIGN.md §1.2). With
+    /// [`AtlasOptions::coverage_on_first_use`] it is rasterised here, when first asked for: the
+    /// values at the vertices read the surfels only, and Spot's rasterisation was a tenth of its
+    /// 30 ms call. While a stop request cuts that short it is not kept (the next use rasterises
+    /// again) and the stopped caller sees empty texels.
+    pub fn coverage(&self) -> &Coverage {
+        built_once(
+            &self.coverage,
+            || Coverage::build(&self.topology, self.resolution),
+            || self.stopped_coverage.get_or_init(|| Coverage::empty(self.resolution)),
+        )
+    }
+
     /// The geometry buffers of the frame (DESIGN.md §1.3: position, normal, metric per texel). The
     /// default triangle lookup reads the faces and their patches, not these, so they are
     /// evaluated on first use (the bilinear lookup, the buffer getters): an animation frame
     /// computed with the defaults never pays for them (~20 ms and 36 MB at 1024²).
     pub fn buffers(&self) -> &GeometryBuffers {
         self.buffers
-            .get_or_init(|| GeometryBuffers::evaluate(&self.topology, &self.coverage, &self.frame, self.precision))
+            .get_or_init(|| GeometryBuffers::evaluate(&self.topology, self.coverage(), &self.frame, self.precision))
     }
 
     /// The surfel pyramid of the frame on `surface` (DESIGN.md §1.4.8), built on first use by
@@ -98,18 +124,11 @@ impl Atlas {
     pub fn surfels(&self, surface: Surface) -> &Surfels {
         static NONE: Surfels = Surfels { levels: Vec::new() };
         let cell = &self.surfels[usize::from(surface == Surface::Smooth)];
-        if let Some(surfels) = cell.get() {
-            return surfels;
-        }
         // Asked per point: once stopped, no point starts a build of its own.
-        if cancel::requested() {
+        if cell.get().is_none() && cancel::requested() {
             return &NONE;
         }
-        let built = Surfels::build(&self.topology, &self.frame, self.resolution(), surface);
-        if cancel::requested() {
-            return &NONE;
-        }
-        cell.get_or_init(|| built)
+        built_once(cell, || Surfels::build(&self.topology, &self.frame, self.resolution(), surface), || &NONE)
     }
 
     /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, patches; the buffers on
@@ -128,7 +147,7 @@ impl Atlas {
 
     /// Texels per side.
     pub fn resolution(&self) -> usize {
-        self.coverage.resolution
+        self.resolution
     }
 
     /// Index of the texel containing the parametric point `uv`; `None` outside `[0, 1)^2`.
@@ -149,7 +168,7 @@ impl Atlas {
 
     /// Chart id at `uv` (-1 for empty texels and points outside the domain).
     pub fn chart_at(&self, uv: DVec2) -> i32 {
-        self.texel_at(uv).map_or(-1, |t| self.coverage.chart[t])
+        self.texel_at(uv).map_or(-1, |t| self.coverage().chart[t])
     }
 
     /// The texel containing `uv` if `accept` takes it, else the accepted texel of the 3x3
@@ -178,8 +197,22 @@ impl Atlas {
 
     /// Centre of texel `t` in parametric coordinates.
     pub fn texel_centre(&self, t: usize) -> DVec2 {
-        self.coverage.texel_centre(t)
+        crate::raster::texel_centre(t, self.resolution)
     }
+}
+
+/// `cell`'s value, built on first use by `build` (one build at a time); a build that a stop
+/// request cut short is not kept, and the caller gets `stopped()` instead.
+fn built_once<'a, T>(cell: &'a OnceCell<T>, build: impl FnOnce() -> T, stopped: impl FnOnce() -> &'a T) -> &'a T {
+    let kept = cell.get_or_try_init(|| {
+        let value = build();
+        if cancel::requested() {
+            Err(())
+        } else {
+            Ok(value)
+        }
+    });
+    kept.unwrap_or_else(|()| stopped())
 }
 
 /// Bytes the coverage and one frame of buffers take at `resolution`.

@@ -54,7 +54,7 @@ impl Lookup {
 /// Bilinear filtering of the buffers at `uv` over the texels of `chart` among the four nearest
 /// (weights renormalised); the nearest texel of `chart` where none of the four belongs to it.
 fn bilinear_point(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<SurfacePoint> {
-    let coverage = &atlas.coverage;
+    let coverage = atlas.coverage();
     let buffers = atlas.buffers();
     let n = atlas.resolution() as i64;
     let (x, y) = (uv.x * n as f64 - 0.5, uv.y * n as f64 - 0.5);
@@ -127,7 +127,7 @@ pub fn evaluate_face(atlas: &Atlas, face: u32, uv: DVec2) -> Option<SurfacePoint
 }
 
 fn face_near(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<u32> {
-    let coverage = &atlas.coverage;
+    let coverage = atlas.coverage();
     let texel = atlas.nearest_texel(uv, |t| coverage.chart[t] == chart)?;
     u32::try_from(coverage.face[texel]).ok()
 }

@@ -55,7 +55,7 @@ pub fn surfel_grid_width(
 #[pymethods]
 impl PyAtlas {
     #[new]
-    #[pyo3(signature = (topology, positions, resolution = 1024, precision = "f32", memory_budget = 8u64 << 30))]
+    #[pyo3(signature = (topology, positions, resolution = 1024, precision = "f32", memory_budget = 8u64 << 30, coverage_on_first_use = false))]
     fn new(
         py: Python<'_>,
         topology: &PyTopology,
@@ -63,8 +63,10 @@ impl PyAtlas {
         resolution: usize,
         precision: &str,
         memory_budget: u64,
+        coverage_on_first_use: bool,
     ) -> PyResult<Self> {
-        let options = AtlasOptions { resolution, precision: named::<Precision>(precision)?, memory_budget };
+        let precision = named::<Precision>(precision)?;
+        let options = AtlasOptions { resolution, precision, memory_budget, coverage_on_first_use };
         let positions = positions_of(&positions)?;
         let topology = topology.inner.clone();
         let inner = guarded(py, || Atlas::new(topology, &positions, &options))?;
@@ -111,22 +113,22 @@ impl PyAtlas {
 
     #[getter]
     fn chart<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<i32>>> {
-        self.texel_map(py, self.inner.coverage.chart.clone())
+        self.texel_map(py, self.inner.coverage().chart.clone())
     }
 
     #[getter]
     fn face<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<i32>>> {
-        self.texel_map(py, self.inner.coverage.face.clone())
+        self.texel_map(py, self.inner.coverage().face.clone())
     }
 
     #[getter]
     fn border_side<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<i32>>> {
-        self.texel_map(py, self.inner.coverage.border_side.clone())
+        self.texel_map(py, self.inner.coverage().border_side.clone())
     }
 
     #[getter]
     fn border<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArrayDyn<bool>>> {
-        self.texel_map(py, self.inner.coverage.border_side.iter().map(|&s| s >= 0).collect())
+        self.texel_map(py, self.inner.coverage().border_side.iter().map(|&s| s >= 0).collect())
     }
 
     #[getter]
@@ -134,7 +136,7 @@ impl PyAtlas {
         let sides = &self.inner.topology.sides;
         let adjacent = self
             .inner
-            .coverage
+            .coverage()
             .border_side
             .iter()
             .map(|&s| usize::try_from(s).map_or(-1, |s| sides[s].adjacent_chart))
@@ -144,7 +146,7 @@ impl PyAtlas {
 
     #[getter]
     fn diagnostics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = &self.inner.coverage.diagnostics;
+        let d = &self.inner.coverage().diagnostics;
         let out = PyDict::new(py);
         out.set_item("resolution", self.inner.resolution())?;
         out.set_item("covered_texels", d.covered_texels)?;

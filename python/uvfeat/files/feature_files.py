@@ -265,7 +265,7 @@ def job_atlases(mesh, job: FeatureJob):
         return atlas, None, {}
     if vertex_mesh is mesh and vertex_resolution == resolution:
         return atlas, (atlas, vertex_options), {}
-    vertex_atlas = Atlas(vertex_mesh, resolution=vertex_resolution)
+    vertex_atlas = Atlas(vertex_mesh, resolution=vertex_resolution, coverage_on_first_use=True)
     return atlas, (vertex_atlas, vertex_options), {"vertex_rasterisation_s": vertex_atlas.timings["rasterisation_s"]}
 
 

@@ -134,7 +134,7 @@ fn within_clear_texels(atlas: &Atlas, from: DVec2, to: DVec2) -> bool {
     // `from`'s; those closer than the chart distance less one are clear (`Coverage::chart_distance`),
     // and one texel more is kept for ends that lie on a texel's edge.
     let apart = i.abs_diff(k).max(j.abs_diff(l));
-    usize::from(atlas.coverage.chart_distance.at(i, j)) > apart + 2
+    usize::from(atlas.coverage().chart_distance.at(i, j)) > apart + 2
 }
 
 /// Evaluates the texels `members` of one chart around `centre`, which reaches them all;

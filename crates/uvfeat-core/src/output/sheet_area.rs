@@ -24,7 +24,7 @@ pub fn sheet_area(atlas: &Atlas, chart: &[i32], w: usize, radius: usize) -> Vec<
         .map(|c| {
             let at = |k: usize| (k * stride + stride / 2).min(w - 1);
             let uv = texel_uv(at(c / cells) * w + at(c % cells), w);
-            let face = atlas.texel_at(uv).and_then(|texel| u32::try_from(atlas.coverage.face[texel]).ok());
+            let face = atlas.texel_at(uv).and_then(|texel| u32::try_from(atlas.coverage().face[texel]).ok());
             face.map_or(f64::NAN, |face| atlas.frame.face_map(&atlas.topology, face).map_or(1.0, |map| map.roughness()))
         })
         .collect();

@@ -55,19 +55,16 @@ pub struct Coverage {
     pub diagnostics: CoverageDiagnostics,
 }
 
+/// Centre of texel `t` of a `resolution`² grid in parametric coordinates.
+pub fn texel_centre(t: usize, resolution: usize) -> DVec2 {
+    let r = resolution as f64;
+    DVec2::new(((t % resolution) as f64 + 0.5) / r, ((t / resolution) as f64 + 0.5) / r)
+}
+
 impl Coverage {
     /// Rasterises the charts of `topology` into a `resolution`² grid.
     pub fn build(topology: &Topology, resolution: usize) -> Self {
-        let n = resolution * resolution;
-        let mut coverage = Self {
-            resolution,
-            face: vec![-1; n],
-            chart: vec![-1; n],
-            border_side: vec![-1; n],
-            chart_distance: Blocked::default(),
-            interior_face: Blocked::default(),
-            diagnostics: CoverageDiagnostics::default(),
-        };
+        let mut coverage = Self::unfilled(resolution);
         // A stop request leaves the coverage unfinished: the atlas it was for is not returned.
         coverage.rasterise_triangles(topology);
         if cancel::requested() {
@@ -79,7 +76,7 @@ impl Coverage {
         }
         let distance = chart_distance(&coverage.chart, &coverage.border_side, resolution);
         coverage.chart_distance = Blocked::from_rows(&distance, resolution, 0);
-        let interior_face: Vec<u32> = (0..n)
+        let interior_face: Vec<u32> = (0..resolution * resolution)
             .into_par_iter()
             .map(|t| {
                 let interior = distance[t] >= INTERIOR_DISTANCE && coverage.border_side[t] < 0;
@@ -88,6 +85,30 @@ impl Coverage {
             .collect();
         coverage.interior_face = Blocked::from_rows(&interior_face, resolution, u32::MAX);
         coverage
+    }
+
+    /// A `resolution`² grid with no texel covered (all tables in place).
+    pub fn empty(resolution: usize) -> Self {
+        let n = resolution * resolution;
+        Self {
+            chart_distance: Blocked::from_rows(&vec![0; n], resolution, 0),
+            interior_face: Blocked::from_rows(&vec![u32::MAX; n], resolution, u32::MAX),
+            ..Self::unfilled(resolution)
+        }
+    }
+
+    /// Every texel empty, its tables not yet laid out.
+    fn unfilled(resolution: usize) -> Self {
+        let n = resolution * resolution;
+        Self {
+            resolution,
+            face: vec![-1; n],
+            chart: vec![-1; n],
+            border_side: vec![-1; n],
+            chart_distance: Blocked::default(),
+            interior_face: Blocked::default(),
+            diagnostics: CoverageDiagnostics::default(),
+        }
     }
 
     /// The face a texel shows and the UV of the point it shows: the texel centre where it lies in
@@ -109,8 +130,7 @@ impl Coverage {
 
     /// Centre of texel `t` in parametric coordinates.
     pub fn texel_centre(&self, t: usize) -> DVec2 {
-        let r = self.resolution as f64;
-        DVec2::new(((t % self.resolution) as f64 + 0.5) / r, ((t / self.resolution) as f64 + 0.5) / r)
+        texel_centre(t, self.resolution)
     }
 
     fn rasterise_triangles(&mut self, topology: &Topology) {

@@ -13,7 +13,7 @@ mod triangles;
 pub use blocked::Blocked;
 pub(crate) use boundary::closest_on_segment;
 pub use buffers::{GeometryBuffers, Precision};
-pub use coverage::{Coverage, CoverageDiagnostics};
+pub use coverage::{texel_centre, Coverage, CoverageDiagnostics};
 pub use morton::morton;
 pub use patches::{FacePatch, FacePatches};
 pub use surfels::{Surface, SurfelLevel, SurfelPoint, Surfels};

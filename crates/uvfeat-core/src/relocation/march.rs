@@ -26,7 +26,7 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
         let Some(texel) = border_texel(atlas, last_inside, chart) else {
             return Located::Missing;
         };
-        let side_index = atlas.coverage.border_side[texel] as usize;
+        let side_index = atlas.coverage().border_side[texel] as usize;
         let side = &atlas.topology.sides[side_index];
         let Some(map) = atlas.frame.seam_maps[side_index] else {
             return Located::Border;
@@ -57,7 +57,7 @@ pub fn last_inside(atlas: &Atlas, origin: DVec2, target: DVec2, chart: i32) -> O
 /// First `k` in `1..=steps` with `origin + k step` outside `chart` (DESIGN.md §1.5 march), skipping
 /// ahead by the chart distance of the current texel: the points skipped are provably inside.
 fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i32) -> Option<usize> {
-    let coverage = &atlas.coverage;
+    let coverage = atlas.coverage();
     let mut k = 0;
     loop {
         let here = atlas.texel_coordinates(origin + step * k as f64);
@@ -76,7 +76,7 @@ fn first_exit(atlas: &Atlas, origin: DVec2, step: DVec2, steps: usize, chart: i3
 
 /// The border texel of `chart` at `uv`, else the one of its 3x3 neighbourhood closest to `uv`.
 pub fn border_texel(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<usize> {
-    let coverage = &atlas.coverage;
+    let coverage = atlas.coverage();
     atlas.nearest_texel(uv, |t| coverage.chart[t] == chart && coverage.border_side[t] >= 0)
 }
 
@@ -97,7 +97,7 @@ pub struct Crossing {
 /// chart on the other side with that texel's transition map (DESIGN.md §1.3.4 `ADJ`).
 pub fn cross_seam(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Crossing> {
     let texel = border_texel(atlas, uv, chart)?;
-    let side = atlas.coverage.border_side[texel] as usize;
+    let side = atlas.coverage().border_side[texel] as usize;
     let map = atlas.frame.seam_maps[side]?;
     Some(Crossing { chart: atlas.topology.sides[side].adjacent_chart, uv: map.apply(uv), m: map.m, side })
 }

@@ -53,7 +53,7 @@ pub enum Relocation {
 #[inline]
 pub fn interior_face(atlas: &Atlas, target: DVec2, chart: i32) -> Option<u32> {
     let (i, j) = atlas.texel_coordinates(target)?;
-    interior_of_chart(atlas, atlas.coverage.interior_face.at(i, j), chart)
+    interior_of_chart(atlas, atlas.coverage().interior_face.at(i, j), chart)
 }
 
 /// `face`, a value of the interior table ([`interior_face`]), when it is a face of `chart`.

@@ -96,7 +96,7 @@ fn walk_in_chart(
 /// The face of `chart` containing `uv`: found from the face of its texel by a short walk, which
 /// stops at the chart boundary (then `point` is the boundary point closest along the way).
 pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
-    let coverage = &atlas.coverage;
+    let coverage = atlas.coverage();
     let texel = atlas.nearest_texel(uv, |t| coverage.chart[t] == chart)?;
     let face = u32::try_from(coverage.face[texel]).ok()?;
     let topology = &atlas.topology;
@@ -117,7 +117,7 @@ pub fn home(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Home> {
 ///
 /// [`Coverage::chart_distance`]: crate::raster::Coverage::chart_distance
 fn skip_ahead(atlas: &Atlas, chart: i32, from: DVec2, target: DVec2) -> Option<(u32, DVec2)> {
-    let coverage = &atlas.coverage;
+    let coverage = atlas.coverage();
     let texel_size = 1.0 / coverage.resolution as f64;
     let mut point = from;
     let side = coverage.resolution;

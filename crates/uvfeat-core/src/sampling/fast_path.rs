@@ -182,7 +182,7 @@ impl Landing {
         }
         let to_uv = (domain.ellipse * domain.placement.turn()).as_mat2();
         let (cu, cv) = (centre.uv.x as f32, centre.uv.y as f32);
-        let interior = &atlas.coverage.interior_face;
+        let interior = &atlas.coverage().interior_face;
         let side = atlas.resolution() as f32;
         for k in 0..len {
             let margin = margins[k] as f32;
@@ -205,7 +205,7 @@ fn gather_batches(gathering: &Gathering, out: &mut Vec<Sample>) -> SampleCounts 
     let settings = domain.settings;
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
     let patches = &atlas.patches;
-    let interior = &atlas.coverage.interior_face;
+    let interior = &atlas.coverage().interior_face;
     let r = settings.radius as f32;
     let kernel = Kernel {
         patches: &patches.faces,

@@ -276,7 +276,7 @@ impl<'a> LatticeBuilder<'a> {
     /// quarter of the lattice's building on the table's load).
     fn locate_interior(&mut self) -> Vec<IVec2> {
         let (atlas, chart) = (self.atlas, self.plane.centre.chart);
-        let table = &atlas.coverage.interior_face;
+        let table = &atlas.coverage().interior_face;
         let mut held = Vec::with_capacity(self.cells.len());
         for cell in (0..self.rows).flat_map(|b| (0..self.columns).map(move |a| IVec2::new(a, b))) {
             let w = self.place(cell);

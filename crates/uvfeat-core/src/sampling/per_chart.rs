@@ -61,7 +61,7 @@ pub fn gather_per_chart(
             counts.missing += 1;
             continue;
         };
-        let side = atlas.coverage.border_side[texel] as usize;
+        let side = atlas.coverage().border_side[texel] as usize;
         if atlas.frame.seam_maps[side].is_none() {
             counts.border += 1;
             continue;
@@ -95,7 +95,7 @@ pub fn gather_per_chart(
 fn exit_texel(atlas: &Atlas, centre: &Centre, target: DVec2) -> Option<usize> {
     let last_inside = last_inside(atlas, centre.uv, target, centre.chart).unwrap_or(target);
     let texel = border_texel(atlas, last_inside, centre.chart)?;
-    (atlas.coverage.border_side[texel] >= 0).then_some(texel)
+    (atlas.coverage().border_side[texel] >= 0).then_some(texel)
 }
 
 /// Keeps the closest mark per chart; `false` when the table is full.

@@ -37,7 +37,7 @@ fn torus_area_in_ball(p: DVec3, radius: f64) -> f64 {
 fn centre_near(atlas: &Atlas, target: DVec3) -> Centre {
     let side = atlas.resolution();
     (0..side * side)
-        .filter(|&t| atlas.coverage.chart[t] >= 0)
+        .filter(|&t| atlas.coverage().chart[t] >= 0)
         .filter_map(|t| centre_at(atlas, atlas.texel_centre(t), Lookup::Triangle))
         .min_by(|a, b| a.position.distance(target).total_cmp(&b.position.distance(target)))
         .expect("a texel on the torus")

@@ -24,8 +24,8 @@ fn affine_plane_distortion_is_exact_including_the_angle() {
     let (s1, s2) = (((e + g) / 2.0 + root).sqrt(), ((e + g) / 2.0 - root).sqrt());
     let theta = 0.5 * (2.0 * f).atan2(e - g);
     let mut checked = 0;
-    for t in 0..atlas.coverage.chart.len() {
-        if atlas.coverage.chart[t] < 0 {
+    for t in 0..atlas.coverage().chart.len() {
+        if atlas.coverage().chart[t] < 0 {
             continue;
         }
         let [x1, x2] = atlas.buffers().sigma[t].map(f64::from);
@@ -89,8 +89,8 @@ fn torus_metric_matches_the_analytic_form() {
 fn sphere_stretch_axis_follows_the_parallels_below_sixty_degrees() {
     // E > G (theta = 0) where cos(lat) > 1/2, E < G (theta = pi/2) nearer the poles.
     let atlas = atlas(&uv_sphere(1.0, 256, 128), 512);
-    for (t, &chart) in atlas.coverage.chart.iter().enumerate() {
-        if chart < 0 || atlas.coverage.border_side[t] >= 0 {
+    for (t, &chart) in atlas.coverage().chart.iter().enumerate() {
+        if chart < 0 || atlas.coverage().border_side[t] >= 0 {
             continue;
         }
         let lat = PI * ((atlas.texel_centre(t).y - MARGIN) / SCALE - 0.5);

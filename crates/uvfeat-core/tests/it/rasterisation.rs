@@ -7,7 +7,7 @@ use uvfeat_core::Atlas;
 
 fn max_position_error(atlas: &Atlas) -> f64 {
     let mut worst = 0.0f64;
-    for (t, &face) in atlas.coverage.face.iter().enumerate() {
+    for (t, &face) in atlas.coverage().face.iter().enumerate() {
         let Ok(face) = usize::try_from(face) else {
             continue;
         };
@@ -42,19 +42,19 @@ fn every_texel_centre_inside_a_uv_triangle_is_covered_by_its_chart() {
             let b = barycentric(uv, atlas.texel_centre(t));
             if b.iter().all(|&x| x > 1e-9) {
                 inside += 1;
-                assert_eq!(atlas.coverage.chart[t], atlas.topology.face_chart[face], "texel {t} of face {face}");
-                assert!(atlas.coverage.face[t] >= 0);
+                assert_eq!(atlas.coverage().chart[t], atlas.topology.face_chart[face], "texel {t} of face {face}");
+                assert!(atlas.coverage().face[t] >= 0);
             }
         }
     }
     assert!(inside > 1000);
-    assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
+    assert_eq!(atlas.coverage().diagnostics.overlapping_texels, 0);
 }
 
 /// Number of 4-connected texel regions of each chart.
 fn regions_per_chart(atlas: &Atlas) -> Vec<usize> {
     let r = atlas.resolution();
-    let chart = &atlas.coverage.chart;
+    let chart = &atlas.coverage().chart;
     let mut seen = vec![false; r * r];
     let mut regions = vec![0usize; atlas.topology.n_charts];
     for start in 0..r * r {
@@ -103,7 +103,7 @@ fn thin_sliver_chart_stays_connected_through_boundary_rasterisation() {
     };
     let atlas = atlas(&shape, 512);
     assert_eq!(regions_per_chart(&atlas), vec![1]);
-    assert!(atlas.coverage.diagnostics.border_texels > 400);
+    assert!(atlas.coverage().diagnostics.border_texels > 400);
 }
 
 #[test]
@@ -111,7 +111,7 @@ fn every_texel_anchors_at_its_centre_or_at_the_closest_point_of_its_side() {
     for shape in [torus(2.0, 0.5, 48, 24), patchwork_sphere(6), cylinder(1.0, 2.0, 32, 8)] {
         let res = 128;
         let atlas = atlas(&shape, res);
-        let (coverage, topology) = (&atlas.coverage, &atlas.topology);
+        let (coverage, topology) = (atlas.coverage(), &atlas.topology);
         let (mut centres, mut gutters) = (0, 0);
         for t in 0..res * res {
             let Some((face, uv)) = coverage.anchor(topology, t) else {

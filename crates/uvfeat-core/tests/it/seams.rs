@@ -24,8 +24,8 @@ fn round_trip(atlas: &Atlas) -> RoundTrip {
     let r = atlas.resolution() as f64;
     let mut out = RoundTrip { crossed: 0, worst_uv_texels: 0.0, worst_position_texels: 0.0, landed: 0.0 };
     let mut landed = 0usize;
-    for t in 0..atlas.coverage.chart.len() {
-        let (chart, side) = (atlas.coverage.chart[t], atlas.coverage.border_side[t]);
+    for t in 0..atlas.coverage().chart.len() {
+        let (chart, side) = (atlas.coverage().chart[t], atlas.coverage().border_side[t]);
         if side < 0 || atlas.frame.seam_maps[side as usize].is_none() {
             continue;
         }

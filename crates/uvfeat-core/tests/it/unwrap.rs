@@ -59,7 +59,7 @@ fn charts_are_injective_within_their_cone_and_share_one_scale() {
     assert_eq!(atlas.topology.n_charts, n_charts, "a chart the unwrap made is not one connected UV chart");
     let diagnostics = &atlas.topology.diagnostics;
     assert_eq!((diagnostics.mirrored_uv_faces, diagnostics.degenerate_uv_faces), (0, 0));
-    assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
+    assert_eq!(atlas.coverage().diagnostics.overlapping_texels, 0);
     // Orthographic projection: UV area / surface area is the shared scale squared times the cosine
     // between the face and its chart's axis. The cone test reads smoothed normals (45°, 75° for a
     // notch), so a face's own normal may lean a little further, but never past 85°.
@@ -87,7 +87,7 @@ fn a_spiral_ramp_is_cut_where_it_would_cover_itself() {
     let (mesh, n_charts) = unwrapped(&ramp, &UnwrapOptions::default());
     assert!(n_charts >= 3, "three turns in {n_charts} charts");
     let atlas = atlas(&mesh, 512);
-    assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
+    assert_eq!(atlas.coverage().diagnostics.overlapping_texels, 0);
     assert_eq!(atlas.topology.diagnostics.mirrored_uv_faces, 0);
 }
 
@@ -234,6 +234,6 @@ fn noise_at_the_scale_of_the_faces_does_not_cut_a_chart_at_every_face() {
     // Measured: 43 charts; 213 when every face was projected from the surface itself.
     assert!(n_charts < 80, "{n_charts} charts for {} faces", mesh.faces.len());
     let atlas = atlas(&mesh, 1024);
-    assert_eq!(atlas.coverage.diagnostics.overlapping_texels, 0);
+    assert_eq!(atlas.coverage().diagnostics.overlapping_texels, 0);
     assert_eq!(atlas.topology.diagnostics.mirrored_uv_faces, 0);
 }
