@@ -98,9 +98,9 @@ impl Atlas {
 
     /// Which surface point each texel shows (DESIGN.md §1.2). With
     /// [`AtlasOptions::coverage_on_first_use`] it is rasterised here, when first asked for: the
-    /// values at the vertices read the surfels only, and Spot's rasterisation was a tenth of its
-    /// 30 ms call. While a stop request cuts that short it is not kept (the next use rasterises
-    /// again) and the stopped caller sees empty texels.
+    /// values at the vertices read the surfels only (Spot's atlas for them at r = 4 %: 3.5 -> 2.2
+    /// ms, Bob's 4.7 -> 1.7). While a stop request cuts that short it is not kept (the next use
+    /// rasterises again) and the stopped caller sees empty texels.
     pub fn coverage(&self) -> &Coverage {
         built_once(
             &self.coverage,
