@@ -118,11 +118,10 @@ impl SurfelLevel {
     /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
     /// across texel sides and across the seams. `None` when a stop was requested: each step takes
     /// 0.1-0.2 s at 1024² on 2 cores, so it is asked between them.
-    fn finest(width: usize, mut sums: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Option<Self> {
-        in_z_order(&mut sums, width);
+    fn finest(width: usize, sums: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Option<Self> {
+        let order = z_order(&sums, width);
         cancel::check().ok()?;
-        let owner: Vec<u32> = (0..sums.len() as u32).collect();
-        let mut level = Self::summed(width, &sums, &owner);
+        let mut level = Self::of_sums(width, &sums, &order);
         level.index_texels();
         cancel::check().ok()?;
         let (pairs, on_border) = {
@@ -146,6 +145,34 @@ impl SurfelLevel {
             level.on_border[s as usize] = true;
         }
         Some(level)
+    }
+
+    /// One surfel per texel sum, in `order` (as [`SurfelLevel::summed`] with each its own owner,
+    /// in parallel: that one-thread pass took 11-14 ms of the armadillo's 512² pyramid).
+    fn of_sums(width: usize, sums: &[Fragment], order: &[u32]) -> Self {
+        let sum = |k: &u32| {
+            let f = &sums[*k as usize];
+            if f.area > 0.0 {
+                *f
+            } else {
+                Fragment::empty(f.texel, f.chart)
+            }
+        };
+        Self {
+            width,
+            texel: order.par_iter().map(|&k| sums[k as usize].texel).collect(),
+            chart: order.par_iter().map(|&k| sums[k as usize].chart).collect(),
+            point: order
+                .par_iter()
+                .map(|k| {
+                    let s = sum(k);
+                    SurfelPoint { position: s.centroid(), area: s.area, spread: s.spread }
+                })
+                .collect(),
+            normal: order.par_iter().map(|k| sum(k).normal.normalize_or_zero()).collect(),
+            on_border: vec![false; sums.len()],
+            ..Default::default()
+        }
     }
 
     /// Surfels from fragments grouped by `owner` (consecutive ids from 0, in texel order).
@@ -248,7 +275,7 @@ impl SurfelLevel {
         let key = |s: usize| (up(self.texel[s]), self.chart[s]);
         // Surfels join only within their block, and a block's surfels are consecutive (Z order of
         // the texels, then chart): the blocks are joined apart, in parallel, and listed in the Z
-        // order of the coarse texels, as the finest level (`in_z_order`).
+        // order of the coarse texels, as the finest level (`z_order`).
         let bounds: Vec<usize> =
             (0..self.len()).filter(|&s| s == 0 || key(s).0 != key(s - 1).0).chain([self.len()]).collect();
         let order: Vec<(u64, i32, u32, u32)> = bounds
@@ -292,12 +319,25 @@ impl SurfelLevel {
     }
 }
 
-/// Orders the texel sums (in texel order, then chart) along a Z (Morton) curve over their texels,
-/// then chart: every level's surfels are numbered so (`SurfelLevel::coarser` keeps it), so a
-/// ball's surfels lie in few cache lines, where in row order its rows are a level's width apart
-/// (the search is bound by memory latency: the sums took 1.1-1.4x as long).
-fn in_z_order(sums: &mut [Fragment], width: usize) {
-    sums.par_sort_by_cached_key(|f| (morton(f.texel as usize % width, f.texel as usize / width), f.chart));
+/// The order of the texel sums (in texel order, then chart) along a Z (Morton) curve over their
+/// texels, then chart: every level's surfels are numbered so (`SurfelLevel::coarser` keeps it), so
+/// a ball's surfels lie in few cache lines, where in row order its rows are a level's width apart
+/// (the search is bound by memory latency: the sums took 1.1-1.4x as long). A texel's sums are
+/// consecutive and in chart order already: only the texels' runs are sorted (sorting the sums
+/// themselves took 10-12 ms of the armadillo's 512² pyramid).
+fn z_order(sums: &[Fragment], width: usize) -> Vec<u32> {
+    let starts: Vec<u32> =
+        (0..sums.len() as u32).filter(|&k| k == 0 || sums[k as usize].texel != sums[k as usize - 1].texel).collect();
+    let mut runs: Vec<(u64, u32, u32)> = starts
+        .par_iter()
+        .enumerate()
+        .map(|(r, &start)| {
+            let t = sums[start as usize].texel as usize;
+            (morton(t % width, t / width), start, starts.get(r + 1).copied().unwrap_or(sums.len() as u32))
+        })
+        .collect();
+    runs.par_sort_unstable();
+    runs.par_iter().flat_map_iter(|&(_, start, end)| start..end).collect()
 }
 
 /// The surfel pyramid of one frame; level 0 has the atlas's resolution.
