@@ -97,6 +97,11 @@ def test_coverage_on_first_use_gives_the_same_values_views_and_maps():
     maps = deferred.compute("mean_curvature", "10%", compute_resolution=64, seed=1)["mean_curvature"]
     np.testing.assert_array_equal(maps.texture, eager.compute("mean_curvature", "10%", compute_resolution=64,
                                                               seed=1)["mean_curvature"].texture)
+    # A first use from the parallel maps: the coverage is built before their loops start.
+    fresh = uvfeat.Atlas(mesh, 128, coverage_on_first_use=True)
+    surfel_maps = {atlas: atlas.compute("mean_curvature", "10%", compute_resolution=64, quadrature="surfels",
+                                        lookup="bilinear")["mean_curvature"].texture for atlas in (fresh, eager)}
+    np.testing.assert_array_equal(surfel_maps[fresh], surfel_maps[eager])
 
 
 def test_a_mesh_too_large_for_the_memory_budget_is_refused_before_anything_is_built(monkeypatch):

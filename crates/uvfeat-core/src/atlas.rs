@@ -8,7 +8,6 @@ use crate::frame::Frame;
 use crate::mesh::Topology;
 use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision, Surface, Surfels};
 use glam::{DVec2, DVec3};
-use once_cell::sync::OnceCell;
 use std::sync::{Arc, OnceLock};
 
 /// Largest accepted buffer resolution (texels per side).
@@ -43,16 +42,16 @@ pub struct Atlas {
     resolution: usize,
     /// Which surface point each texel shows (UV-only, reused by all frames; see
     /// [`Atlas::coverage`]).
-    coverage: OnceCell<Coverage>,
+    coverage: OnceLock<Coverage>,
     /// What [`Atlas::coverage`] gives while a stop request cuts its rasterisation short.
-    stopped_coverage: OnceCell<Coverage>,
+    stopped_coverage: OnceLock<Coverage>,
     /// Per-frame mesh quantities.
     pub frame: Frame,
     /// Per-frame geometry buffers, evaluated on first use (see [`Atlas::buffers`]).
     buffers: OnceLock<GeometryBuffers>,
     /// Per-frame surfel pyramids on the smooth surface and on the facets, built on first use (see
     /// [`Atlas::surfels`]).
-    surfels: [OnceCell<Surfels>; 2],
+    surfels: [OnceLock<Surfels>; 2],
     /// Per-frame compact surface patches of the faces (the sampler's fast path).
     pub patches: FacePatches,
     /// Storage precision of positions and normals.
@@ -77,17 +76,17 @@ impl Atlas {
         // patches are evaluated, so that the one-thread parts of each overlap (the patches built
         // after the join left one core idle for 20-30 ms of a 200K-face mesh's atlas).
         let ((frame, patches), coverage) = if options.coverage_on_first_use {
-            (frame_and_patches()?, OnceCell::new())
+            (frame_and_patches()?, OnceLock::new())
         } else {
             let (frame, coverage) = rayon::join(frame_and_patches, || Coverage::build(&topology, options.resolution));
-            (frame?, OnceCell::with_value(coverage))
+            (frame?, OnceLock::from(coverage))
         };
         cancel::check()?;
         Ok(Self {
             topology,
             resolution: options.resolution,
             coverage,
-            stopped_coverage: OnceCell::new(),
+            stopped_coverage: OnceLock::new(),
             frame,
             buffers: OnceLock::new(),
             surfels: Default::default(),
@@ -114,8 +113,9 @@ impl Atlas {
     /// evaluated on first use (the bilinear lookup, the buffer getters): an animation frame
     /// computed with the defaults never pays for them (~20 ms and 36 MB at 1024²).
     pub fn buffers(&self) -> &GeometryBuffers {
-        self.buffers
-            .get_or_init(|| GeometryBuffers::evaluate(&self.topology, self.coverage(), &self.frame, self.precision))
+        // The coverage first, outside the cell (see `built_once`).
+        let coverage = self.coverage();
+        self.buffers.get_or_init(|| GeometryBuffers::evaluate(&self.topology, coverage, &self.frame, self.precision))
     }
 
     /// The surfel pyramid of the frame on `surface` (DESIGN.md §1.4.8), built on first use by
@@ -201,18 +201,20 @@ impl Atlas {
     }
 }
 
-/// `cell`'s value, built on first use by `build` (one build at a time); a build that a stop
-/// request cut short is not kept, and the caller gets `stopped()` instead.
-fn built_once<'a, T>(cell: &'a OnceCell<T>, build: impl FnOnce() -> T, stopped: impl FnOnce() -> &'a T) -> &'a T {
-    let kept = cell.get_or_try_init(|| {
-        let value = build();
-        if cancel::requested() {
-            Err(())
-        } else {
-            Ok(value)
-        }
-    });
-    kept.unwrap_or_else(|()| stopped())
+/// `cell`'s value, built on first use by `build`; a build that a stop request cut short is not
+/// kept, and the caller gets `stopped()` instead. Built outside the cell: a build's parallel loops
+/// may take on other work meanwhile that asks for this same value, and initialising a cell from
+/// within its own initialisation deadlocks (two threads asking at once may both build; one is
+/// kept).
+fn built_once<'a, T>(cell: &'a OnceLock<T>, build: impl FnOnce() -> T, stopped: impl FnOnce() -> &'a T) -> &'a T {
+    if let Some(value) = cell.get() {
+        return value;
+    }
+    let value = build();
+    if cancel::requested() {
+        return stopped();
+    }
+    cell.get_or_init(|| value)
 }
 
 /// Bytes the coverage and one frame of buffers take at `resolution`.

@@ -45,9 +45,10 @@ impl Patterns {
     }
 }
 
-/// Builds the per-frame data `settings` reads (bilinear buffers, surfels) before the parallel work
-/// starts, rather than in the first worker that needs it while the others wait on it idle.
+/// Builds the data `settings` reads (the coverage, bilinear buffers, surfels) before the parallel
+/// work starts, rather than in the first worker that needs it while the others wait on it idle.
 pub fn prepare(atlas: &Atlas, settings: &ComputeSettings) {
+    atlas.coverage();
     if settings.lookup == Lookup::Bilinear {
         atlas.buffers();
     }
