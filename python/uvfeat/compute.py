@@ -25,9 +25,10 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     (``quadrature="surfels"``, about ``samples`` surfels per ball; the pattern's options,
     ``sampling``, ``margin`` ..., do not apply then), unless ``options`` name ``quadrature`` or
     ``query`` or ask for what the sums do not serve (``method="fit"``, ``adaptive``,
-    ``standard_error``, the geodesic methods, ``paper_mode``): then the maps are read. The sums run on uvfeat's own atlas even where the mesh
-    has UVs of its own (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the
-    surface into few texels; uvfeat's gives every chart one texel size), and a vertex whose ball
+    ``standard_error``, the geodesic methods, ``paper_mode``): then the maps are read. The sums
+    run on uvfeat's own atlas even where the mesh has UVs of its own
+    (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the surface into few
+    texels; uvfeat's gives every chart one texel size), and a vertex whose ball
     holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for
     the maps and, for the surfel sums, to the grid up to 512 whose pyramid holds the level each
     face's balls of the smallest radius ask for (:func:`~uvfeat.options.surfel_resolution`: 512 at

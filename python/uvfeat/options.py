@@ -109,8 +109,8 @@ def surfel_resolution(mesh, radius, samples: int = ARGUMENT_DEFAULTS["samples"])
     """The atlas resolution of the surfel sums at the vertices of ``mesh`` for ``radius`` (a length,
     a percentage, a list, or one per vertex: the smallest counts) over about ``samples`` surfels per
     ball: the smallest power of two up to :data:`SURFEL_RESOLUTION` whose finest surfels, of the mean
-    size on its charts, put ``samples`` in a ball, halved while at most a quarter of the surface asks for its finest level
-    (``_core.surfel_grid_width``): half the width holds every coarser level and builds its surfels
+    size on its charts, put ``samples`` in a ball, halved while at most a quarter of the surface
+    asks for its finest level (``_core.surfel_grid_width``): half the width holds every coarser level and builds its surfels
     in a quarter of the time. Radii the computation will reject give :data:`SURFEL_RESOLUTION` (the
     computation names them)."""
     diagonal = mesh.bounding_box_diagonal

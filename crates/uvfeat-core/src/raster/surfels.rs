@@ -147,30 +147,31 @@ impl SurfelLevel {
         Some(level)
     }
 
-    /// One surfel per texel sum, in `order` (as [`SurfelLevel::summed`] with each its own owner,
-    /// in parallel: that one-thread pass took 11-14 ms of the armadillo's 512² pyramid).
+    /// One surfel per texel sum, in `order` (each its own surfel, as [`SurfelLevel::summed`] would
+    /// sum it, with no copy of the sums: sorting and merging them on one thread took 22-25 ms of
+    /// the armadillo's 512² pyramid).
     fn of_sums(width: usize, sums: &[Fragment], order: &[u32]) -> Self {
-        let sum = |k: &u32| {
-            let f = &sums[*k as usize];
+        Self::laid_out(width, order.len(), |k| {
+            let f = &sums[order[k] as usize];
+            // As `absorb` into an empty sum: a piece without area leaves it empty.
             if f.area > 0.0 {
                 *f
             } else {
                 Fragment::empty(f.texel, f.chart)
             }
-        };
+        })
+    }
+
+    /// The level of `n` surfels, surfel `k` the sum `sum(k)`, laid out in parallel.
+    fn laid_out(width: usize, n: usize, sum: impl Fn(usize) -> Fragment + Sync) -> Self {
+        let each = || (0..n).into_par_iter().map(&sum);
         Self {
             width,
-            texel: order.par_iter().map(|&k| sums[k as usize].texel).collect(),
-            chart: order.par_iter().map(|&k| sums[k as usize].chart).collect(),
-            point: order
-                .par_iter()
-                .map(|k| {
-                    let s = sum(k);
-                    SurfelPoint { position: s.centroid(), area: s.area, spread: s.spread }
-                })
-                .collect(),
-            normal: order.par_iter().map(|k| sum(k).normal.normalize_or_zero()).collect(),
-            on_border: vec![false; sums.len()],
+            texel: each().map(|s| s.texel).collect(),
+            chart: each().map(|s| s.chart).collect(),
+            point: each().map(|s| SurfelPoint { position: s.centroid(), area: s.area, spread: s.spread }).collect(),
+            normal: each().map(|s| s.normal.normalize_or_zero()).collect(),
+            on_border: vec![false; n],
             ..Default::default()
         }
     }
@@ -185,18 +186,7 @@ impl SurfelLevel {
             sum.chart = f.chart;
             sum.absorb(f);
         }
-        Self {
-            width,
-            texel: sums.iter().map(|s| s.texel).collect(),
-            chart: sums.iter().map(|s| s.chart).collect(),
-            point: sums
-                .iter()
-                .map(|s| SurfelPoint { position: s.centroid(), area: s.area, spread: s.spread })
-                .collect(),
-            normal: sums.iter().map(|s| s.normal.normalize_or_zero()).collect(),
-            on_border: vec![false; n],
-            ..Default::default()
-        }
+        Self::laid_out(width, n, |k| sums[k])
     }
 
     /// Adjacency from pairs `(a, b)` (either order, repeats and `a == b` allowed), each list in
