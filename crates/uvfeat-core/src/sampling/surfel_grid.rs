@@ -7,7 +7,7 @@
 //! level `k + 1`: every face that asks for level 1 or coarser sums the same surfels on it. Only the
 //! faces that ask for the wider grid's finest level lose, to a quarter of their surfels.
 
-use super::surfels::surfel_level;
+use super::surfels::{level_side, surfel_level};
 use crate::distortion::Distortion;
 use crate::mesh::{Jacobian, Topology};
 use glam::DVec3;
@@ -47,6 +47,12 @@ impl FaceScale {
             uv_area: 0.5 * d1.perp_dot(d2).abs(),
             sigma1: Distortion::from_metric(jacobian.metric()).sigma1,
         })
+    }
+
+    /// The side of the square a uv unit of the face counts as in the choice of a level
+    /// ([`level_side`]).
+    pub fn level_side(&self) -> f64 {
+        level_side(self.sigma1, (self.area / self.uv_area).sqrt())
     }
 }
 
@@ -90,7 +96,11 @@ pub fn grid_width(faces: &[FaceScale], radius: f64, per_ball: f64, largest: usiz
     }
     let asking_finest = |width: usize| -> f64 {
         let w = width as f64;
-        faces.par_iter().filter(|f| surfel_level(usize::MAX, f.sigma1 / w, radius, per_ball) == 0).map(|f| f.area).sum()
+        faces
+            .par_iter()
+            .filter(|f| surfel_level(usize::MAX, f.level_side() / w, radius, per_ball) == 0)
+            .map(|f| f.area)
+            .sum()
     };
     while width > SMALLEST_GRID && asking_finest(width) <= COARSER_SHARE * surface_area {
         width /= 2;
@@ -108,14 +118,15 @@ mod tests {
     const PER_BALL: f64 = 256.0;
 
     /// `n` equal faces of a unit sphere's area on half the unit square, the `stretched` share of
-    /// them twice as long along one side as the others (at the same area).
+    /// them four times as long as wide (at the same area: twice the longer side of the others,
+    /// which counts as a square `sqrt(2)` times theirs, [`level_side`]).
     fn sphere_faces(n: usize, stretched: f64) -> Vec<FaceScale> {
         let (area, uv_area) = (4.0 * PI / n as f64, 0.5 / n as f64);
         let side = (area / uv_area).sqrt();
         (0..n)
             .map(|i| {
                 let long = (i as f64) < stretched * n as f64;
-                FaceScale { area, uv_area, sigma1: if long { side * 2.0_f64.sqrt() } else { side } }
+                FaceScale { area, uv_area, sigma1: if long { 2.0 * side } else { side } }
             })
             .collect()
     }
@@ -140,13 +151,25 @@ mod tests {
 
     #[test]
     fn the_grid_stays_where_more_than_a_quarter_of_the_surface_asks_for_its_finest_level() {
-        // At r = 0.15 the mean-size faces ask for level 1 of the 512² grid and the faces twice as
-        // long for its level 0.
+        // At r = 0.15 the mean-size faces ask for level 1 of the 512² grid and the faces stretched
+        // 4 : 1 for its level 0.
         let side = (8.0 * PI).sqrt();
         assert_eq!(surfel_level(usize::MAX, side / 512.0, 0.15, PER_BALL), 1);
         assert_eq!(surfel_level(usize::MAX, 2.0_f64.sqrt() * side / 512.0, 0.15, PER_BALL), 0);
         assert_eq!(grid_width(&sphere_faces(100, 0.2), 0.15, PER_BALL, 512), 256);
         assert_eq!(grid_width(&sphere_faces(100, 0.3), 0.15, PER_BALL, 512), 512);
+    }
+
+    #[test]
+    fn a_texel_counts_as_the_square_of_its_area_up_to_a_stretch_of_two() {
+        // 1.5 : 1 and 2 : 1 at unit area: the unit square.
+        for stretch in [1.0, 1.5, 2.0] {
+            assert!((level_side(f64::sqrt(stretch), 1.0) - 1.0).abs() < 1e-12, "{stretch}");
+        }
+        // 8 : 1 (sides sqrt(8) and 1 / sqrt(8)): a square of side 2, four times the area's.
+        assert!((level_side(8.0_f64.sqrt(), 1.0) - 2.0).abs() < 1e-12);
+        let side = (8.0 * PI).sqrt();
+        assert_eq!(FaceScale { area: 1.0, uv_area: 1.0 / (side * side), sigma1: 1.2 * side }.level_side(), side);
     }
 
     #[test]

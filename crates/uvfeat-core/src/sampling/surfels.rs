@@ -32,14 +32,25 @@ thread_local! {
     static REACHED: RefCell<(Stamps, Vec<u32>)> = RefCell::new((Stamps::new(0), Vec::new()));
 }
 
+/// A texel stretched up to this ratio of its sides is sized by its area.
+const SQUARE_STRETCH: f64 = 2.0;
+
+/// The side of the square a texel `longer` long and `side` on the side of its area counts as in
+/// the choice of a level ([`surfel_level`]): its area's, up to a stretch of [`SQUARE_STRETCH`],
+/// so that a ball sums about its surfels per ball whatever the stretch of the charts of uvfeat's
+/// atlas (normal cones of 45 degrees: up to `sqrt(2)`; sized by the longer side, the dragon's
+/// balls summed 1.4x the surfels they asked for), and beyond it a length that keeps a stretched
+/// chart's surfels (whose centroids sag below a curved surface) about as long as a square's.
+pub(super) fn level_side(longer: f64, side: f64) -> f64 {
+    side.max(longer / SQUARE_STRETCH.sqrt())
+}
+
 /// The pyramid level whose surfels, about `2^k / W` parametric units wide, put about `target` in
-/// the ball where a finest surfel is up to `texel_length` long (`sigma_1 / W`).
-pub(super) fn surfel_level(n_levels: usize, texel_length: f64, radius: f64, target: f64) -> usize {
-    // A level-k surfel is up to sigma_1 2^k / W long; as many squares of that side fill the ball
-    // `target` times when 2^k = W r sqrt(pi / target) / sigma_1. Sized by the longer side, so
-    // that a stretched chart (surfels longer than wide, whose centroids sag below a curved
-    // surface) takes a finer level.
-    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_length;
+/// the ball where a finest surfel counts as a square of side `texel_side` ([`level_side`]).
+pub(super) fn surfel_level(n_levels: usize, texel_side: f64, radius: f64, target: f64) -> usize {
+    // A level-k surfel counts as a square of side texel_side 2^k; `target` of them fill the ball
+    // when 2^k = r sqrt(pi / target) / texel_side.
+    let scale = radius * (std::f64::consts::PI / target).sqrt() / texel_side;
     let widest = scale.log2().round();
     (widest.max(0.0) as usize).min(n_levels.saturating_sub(1))
 }
@@ -145,7 +156,7 @@ impl SurfelBall {
     ) -> Option<Self> {
         let finest = surfels.levels.first()?;
         let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
-        let level = surfel_level(surfels.levels.len(), texels.0, radius, per_ball);
+        let level = surfel_level(surfels.levels.len(), level_side(texels.0, texels.1), radius, per_ball);
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
         let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
         let edge = radius * centring(width / radius);
