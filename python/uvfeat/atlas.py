@@ -230,8 +230,8 @@ class Atlas:
         samples : int
             Samples per neighbourhood (>= 4): the pattern's points per texel, or with
             ``quadrature="surfels"`` about as many surfels per ball (the pyramid level summed: on
-            the shared scans a quarter as many take 0.3-0.8x the time from r = 2 % and add up to
-            0.5 % of the range to H's error, 0.6 % to K's; docs/BENCHMARKS.md).
+            the shared scans a quarter as many take 0.4-0.7x the time at r = 4-8 % and add up to
+            0.45 % of the range to H's error, 0.8 % to K's; docs/BENCHMARKS.md).
         compute_resolution : int
             Size ``W_c`` of the computation texture.
         adaptive : bool

@@ -34,8 +34,8 @@ pub struct SurfelCentre {
     /// Chart of `uv`.
     pub chart: i32,
     /// Object length of one texel of the atlas at `p` along its longer side (the largest
-    /// singular value of the parametrisation over `W`): a stretched chart's surfels, longer than
-    /// wide, take a finer level, as the flat quadrature's.
+    /// singular value of the parametrisation over `W`): a texel stretched past 2 : 1 takes a finer
+    /// level than its area asks for, as the flat quadrature's (`sampling::level_side`).
     pub texel_length: f64,
     /// Object length of one texel's side for its area: `sqrt(sigma_1 sigma_2) / W` (the ramp's
     /// width, as the flat quadrature's).

@@ -18,10 +18,9 @@ use rayon::prelude::*;
 const SMALLEST_GRID: usize = 128;
 
 /// The share of the surface that may sum one level coarser than its balls ask for on a grid of
-/// half the width. On the shared meshes at r = 4 % the faces asking for the finest level of the
-/// mean-size grid cover 7-16 % of the surface on the meshes of fewer than 300 charts, where half
-/// the grid moved H and K by at most 0.04 % of their range in 0.35-0.75x the time, and 40 % on the
-/// 1,119-chart dragon, whose fragments need the surfels (H 0.29 -> 0.44 %).
+/// half the width. On the shared meshes of fewer than 300 charts half the grid moved H and K by at
+/// most 0.04 % of their range in 0.35-0.75x the time; on the 1,119-chart dragon, whose small
+/// charts leave many small surfels, it costs more (DESIGN.md §1.4.9).
 const COARSER_SHARE: f64 = 0.25;
 
 /// What the grid rule reads of one face.

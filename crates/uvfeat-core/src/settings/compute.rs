@@ -20,8 +20,8 @@ pub struct ComputeSettings {
     /// Samples per neighbourhood `N` (256): the pattern's points per pixel, or with the surfels
     /// about as many surfels per ball (the pyramid level summed), whose quadrature error is a few
     /// tenths of a percent of H's range on the shared scans at 256 (docs/BENCHMARKS.md gives the
-    /// trade: a quarter as many take 0.3-0.8x the time from r = 2 % and add up to 0.5 % to H's
-    /// error, 0.6 % to K's).
+    /// trade: a quarter as many take 0.4-0.7x the time at r = 4-8 % and add up to 0.45 % to H's
+    /// error, 0.8 % to K's).
     pub samples: usize,
     /// Computation texture size `W_c` (512).
     pub resolution: usize,
