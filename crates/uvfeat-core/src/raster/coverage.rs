@@ -116,7 +116,7 @@ impl Coverage {
     /// not stored: 8 bytes per texel were 32 MiB at 2048².
     pub fn anchor(&self, topology: &Topology, t: usize) -> Option<(u32, DVec2)> {
         let face = u32::try_from(self.face[t]).ok()?;
-        let centre = self.texel_centre(t);
+        let centre = texel_centre(t, self.resolution);
         let inside = || uv_barycentric(&topology.corner_uvs(face as usize), centre).iter().all(|&b| b >= -1e-12);
         match usize::try_from(self.border_side[t]).ok() {
             Some(side) if !inside() => {
@@ -126,11 +126,6 @@ impl Coverage {
             }
             _ => Some((face, centre)),
         }
-    }
-
-    /// Centre of texel `t` in parametric coordinates.
-    pub fn texel_centre(&self, t: usize) -> DVec2 {
-        texel_centre(t, self.resolution)
     }
 
     fn rasterise_triangles(&mut self, topology: &Topology) {
