@@ -226,7 +226,8 @@ def test_comparison_pictures_survive_all_nan_feature(tmp_path):
 def test_many_charts_compare_the_values_at_the_vertices_that_uvfeat_compute_gives():
     # An icosphere without UVs gets uvfeat's atlas: compare's parametric side is then
     # uvfeat.compute's default (the surfel sums at the vertices, their own atlas), and a named
-    # quadrature keeps the maps. H of the unit sphere is 1.
+    # quadrature keeps the maps. H of the unit sphere is 1; its icosphere's facets, which the sums
+    # measure, lie inside it (their converged H is 1.023 at this radius, the sums' 1.024).
     import trimesh
 
     ico = trimesh.creation.icosphere(4)
@@ -237,7 +238,7 @@ def test_many_charts_compare_the_values_at_the_vertices_that_uvfeat_compute_give
     assert result.settings["mean_parametric_samples"] is None
     np.testing.assert_array_equal(result.parametric["mean_curvature"],
                                   uvfeat.compute(mesh, "mean_curvature", "10%")["mean_curvature"])
-    assert abs(np.median(result.parametric["mean_curvature"]) - 1.0) < 0.02
+    assert abs(np.median(result.parametric["mean_curvature"]) - 1.023) < 0.01
     maps = compare(mesh, "mean_curvature", "10%", truth_levels=0, quadrature="pattern", **SMALL)
     assert maps.settings["parametric"] == "maps" and maps.settings["mean_parametric_samples"] > 10
     assert not np.array_equal(maps.parametric["mean_curvature"], result.parametric["mean_curvature"])

@@ -34,8 +34,10 @@ def test_python_signatures_default_to_the_core(function):
     for name in shared:
         assert parameters[name].default == ARGUMENT_DEFAULTS[name], name
     for name in set(parameters) & set(DEFAULT_OPTIONS):
-        # compare's quadrature None: uvfeat.compute's per-vertex default, which the mesh's atlas decides.
-        expected = None if (function, name) == (uvfeat.compare.compare, "quadrature") else DEFAULT_OPTIONS[name]
+        # compare's quadrature and surface None: uvfeat.compute's per-vertex default, which the mesh's
+        # atlas decides.
+        per_vertex = function is uvfeat.compare.compare and name in ("quadrature", "surface")
+        expected = None if per_vertex else DEFAULT_OPTIONS[name]
         assert parameters[name].default == expected, name
 
 

@@ -76,7 +76,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
             gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"],
             query: str = DEFAULT_OPTIONS["query"], method: str = DEFAULT_OPTIONS["method"],
             sampling: str = DEFAULT_OPTIONS["sampling"], quadrature: str | None = None,
-            surface: str = DEFAULT_OPTIONS["surface"], truth_levels: int = 2) -> Comparison:
+            surface: str | None = None, truth_levels: int = 2) -> Comparison:
     """Runs the parametric method (per-vertex values by ``query``, curvature estimators by ``method``:
     ``"integral"`` or ``"fit"``, sampler by ``sampling``: ``"shared"``, ``"fast"`` or ``"exact"``,
     neighbourhood sums by ``quadrature`` and ``surface``, see :meth:`uvfeat.Atlas.compute`) and the
@@ -107,8 +107,9 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
                                     gaussian_method=gaussian_method)
     if not mesh.has_uvs:
         mesh = mesh.with_atlas(resolution=resolution)
-    options = {"gaussian_method": PARAMETRIC_GAUSSIAN[gaussian_method], "method": method, "sampling": sampling,
-               "surface": surface}
+    options = {"gaussian_method": PARAMETRIC_GAUSSIAN[gaussian_method], "method": method, "sampling": sampling}
+    if surface is not None:
+        options["surface"] = surface
     # A query other than the default asks how maps are read, as a named one does in uvfeat.compute.
     named = options if query == DEFAULT_OPTIONS["query"] else {**options, "query": query}
     sums = None if quadrature is not None else vertex_sums_options(mesh, names, named, paper_mode=False)

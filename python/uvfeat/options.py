@@ -37,8 +37,9 @@ PAPER_OPTIONS = _core.paper_options()
 
 #: What per-vertex values default to on an atlas of more than one chart (a scan's automatic atlas
 #: has hundreds, where the pattern's development overlaps itself across seams): each vertex the
-#: centre of its own ball, summed over the surfels (DESIGN.md §1.9).
-SURFEL_DEFAULTS = {"quadrature": "surfels"}
+#: centre of its own ball, summed over the surfels of the mesh's own flat facets, the surface the
+#: object-space reference and ``converged_reference`` measure (DESIGN.md §1.4.9).
+SURFEL_DEFAULTS = {"quadrature": "surfels", "surface": "facets"}
 
 #: The largest atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel
 #: sums (:func:`vertex_sums_options`); :func:`surfel_resolution` takes less for large radii.

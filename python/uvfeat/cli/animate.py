@@ -53,9 +53,10 @@ def run(args) -> int:
         raise InvalidParameterError(f"uvfeat animate takes one radius, got {args.radius!r}")
     # Every frame's maps: the per-vertex default of many charts does not apply.
     quadrature = args.quadrature or DEFAULT_OPTIONS["quadrature"]
+    surface = args.surface or DEFAULT_OPTIONS["surface"]
     options = dict(frames=args.frames, fps=args.fps, animation=args.animation, resolution=args.resolution, uv=args.uv,
                    samples=args.samples, compute_resolution=args.compute_resolution, seed=args.seed,
-                   method=args.method, sampling=args.sampling, quadrature=quadrature, surface=args.surface)
+                   method=args.method, sampling=args.sampling, quadrature=quadrature, surface=surface)
     frames, notes = open_animation(args.mesh, args.feature, args.radius, **options)
     notes += frames.atlas.warnings()
     total = len(frames) if args.max_frames is None else max(0, min(len(frames), args.max_frames))
@@ -83,7 +84,7 @@ def run(args) -> int:
         "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": args.samples,
                      "resolution": args.resolution, "compute_resolution": args.compute_resolution, "seed": args.seed,
                      "method": args.method, "sampling": args.sampling, "quadrature": quadrature,
-                     "surface": args.surface},
+                     "surface": surface},
         "colour_ranges": ranges, "warnings": notes, "diagnostics": frames.atlas.diagnostics,
         "timings": {"once_s": frames.atlas.timings, "mean_per_frame_ms": mean_ms, "per_frame": per_frame,
                     "total_s": time.perf_counter() - started},

@@ -113,9 +113,10 @@ def add_feature_options(parser: argparse.ArgumentParser) -> None:
                         "pattern, except the per-vertex values of an atlas of more than one chart, which sum the "
                         "surfels at the vertices, and there compute's maps of radii of 3 face sides or more, those "
                         "values interpolated over the faces)")
-    parser.add_argument("--surface", choices=CHOICES["surface"], default=DEFAULT_OPTIONS["surface"],
-                        help="with --quadrature surfels: the smooth surface through the vertex normals, or the "
-                        "mesh's flat facets as the object-space reference measures them (default %(default)s)")
+    parser.add_argument("--surface", choices=CHOICES["surface"], default=None,
+                        help="the surface summed: the smooth surface through the vertex normals, or the mesh's flat "
+                        "facets as the object-space reference measures them (default: the facets for the "
+                        "per-vertex sums of an atlas of more than one chart, the smooth surface otherwise)")
 
 
 def add_feature_command_options(parser: argparse.ArgumentParser, radius_note: str) -> None:

@@ -38,7 +38,7 @@ def run(args) -> int:
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
     args.samples, args.adaptive, args.paper_mode = 256, False, False
     args.seed, args.query, args.standard_error, args.method, args.directions = 0, "texture", False, "integral", None
-    args.sampling, args.surface = DEFAULT_OPTIONS["sampling"], DEFAULT_OPTIONS["surface"]
+    args.sampling, args.surface = DEFAULT_OPTIONS["sampling"], None
     args.quadrature = None
     write_features(mesh, args, out, [], time.perf_counter(), explain=explain_notes)
     return 0

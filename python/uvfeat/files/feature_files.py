@@ -65,7 +65,9 @@ class FeatureJob:
     #: (:func:`~uvfeat.options.per_vertex_defaults`), as ``uvfeat.compute``, and the maps those
     #: values interpolated over the faces where :meth:`maps_from_vertices`, the pattern's elsewhere.
     quadrature: str | None = None
-    surface: str = DEFAULT_OPTIONS["surface"]
+    #: None: the facets for the sums at the vertices where they are the default, the smooth surface
+    #: elsewhere (:data:`~uvfeat.options.SURFEL_DEFAULTS`).
+    surface: str | None = None
     standard_error: bool = False
     directions: str | None = None
     uv: str = "auto"
@@ -81,7 +83,7 @@ class FeatureJob:
         options = {
             "samples": self.samples, "compute_resolution": self.compute_resolution,
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
-            "surface": self.surface, "standard_error": self.standard_error}
+            "standard_error": self.standard_error, **self._named_surface()}
         if self.quadrature is not None:
             options["quadrature"] = self.quadrature
         if self.paper_mode:
@@ -118,7 +120,10 @@ class FeatureJob:
         return {"samples": self.samples, "compute_resolution": self.compute_resolution, "adaptive": self.adaptive,
                 "seed": self.seed, "paper_mode": self.paper_mode, "query": self.query,
                 "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling,
-                "quadrature": self.quadrature or DEFAULT_OPTIONS["quadrature"], "surface": self.surface}
+                "quadrature": self.quadrature or DEFAULT_OPTIONS["quadrature"], **self._named_surface()}
+
+    def _named_surface(self) -> dict:
+        return {} if self.surface is None else {"surface": self.surface}
 
     def _named(self) -> dict:
         """The options the job names that decide where the per-vertex values come from."""
@@ -130,7 +135,7 @@ class FeatureJob:
         the vertices, as ``uvfeat.compute`` gives them (by default on an atlas of more than one
         chart, or named with ``quadrature="surfels"``); None where they are read from the maps."""
         added = vertex_sums_options(mesh, self.features, self._named(), self.paper_mode)
-        return None if added is None else {**self.compute_options(), **added}
+        return None if added is None else {**self.compute_options(), **added, **self._named_surface()}
 
     def sums_mesh(self, mesh):
         """The mesh the sums at the vertices run on, as ``uvfeat.compute``'s
