@@ -7,8 +7,9 @@ maps, on the shared scans.
 
 `vertices` is `uvfeat.compute` with its defaults (the surfel sums at the vertices, on their own
 atlas) then `Atlas.vertex_texture` on a `--width`² atlas (the command's atlas where the sums' atlas
-is as fine as the maps). `surfels` is `Atlas.compute(quadrature="surfels")` on 1024² buffers: each
-texel the centre of its own ball, the accurate quadrature at the texels and this table's truth.
+is as fine as the maps). `surfels` is `Atlas.compute(quadrature="surfels", surface="facets")` on
+1024² buffers: each texel the centre of its own ball on the facets the values at the vertices sum,
+the accurate quadrature at the texels and this table's truth.
 `pattern` is `Atlas.compute` with `quadrature="pattern"` on 1024² buffers (one chart's default).
 Errors are %AE over the texels both maps cover: mean |map - surfels| over the surfels' Q1-Q99
 range. Times are medians of `--repeats` calls (`vertices`: values and texture; the maps: the
@@ -73,7 +74,7 @@ def main() -> None:
 
             baked, baked_s = timed(vertices, args.repeats)
             surfels, surfels_s = timed(lambda: maps_atlas.compute(FEATURES, radius, compute_resolution=args.width,
-                                                                  quadrature="surfels"), 1)
+                                                                  quadrature="surfels", surface="facets"), 1)
             pattern, pattern_s = timed(lambda: maps_atlas.compute(FEATURES, radius, compute_resolution=args.width,
                                                                   quadrature="pattern"), args.repeats)
             truth = [surfels[f].texture for f in FEATURES]

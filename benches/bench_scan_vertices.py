@@ -3,11 +3,12 @@ time of each method, from a loaded mesh with a cached automatic atlas.
 
     .venv/bin/python benches/bench_scan_vertices.py [--meshes armadillo.obj dragon.obj stanford-bunny.obj
         spot_triangulated.obj bob_tri.obj]
-        [--radii 1 2 4 8] [--methods default vertices reference] [--probe 1000] [--repeats 3]
+        [--radii 1 2 4 6 8] [--methods default vertices reference] [--probe 1000] [--repeats 3]
         [--resolution 512] [--truth facets|smooth]
 
 Methods: `default` is `uvfeat.compute` with its defaults (on these many-chart atlases, the values at
-the vertices from the surfels), `default:128` the same with `samples=128` (surfels per ball); `kept` the same values from `Atlas.per_vertex` on an Atlas kept for
+the vertices from the surfels of the facets), `default:128` the same with `samples=128` (surfels per
+ball), `default/smooth` with `surface="smooth"`; `kept` the same values from `Atlas.per_vertex` on an Atlas kept for
 the mesh and radius (built, with its surfels, before the timing); `pattern` the pattern read from its 512² maps, the default of a
 single chart (`quadrature="pattern"`, 1024² buffers); `vertices` is `uvfeat.compute` with
 `quadrature="surfels", surface="facets"` (values at the vertices from the surfels' moments, no
@@ -73,11 +74,11 @@ def kept_atlas_values(mesh: uvfeat.Mesh, radius: str) -> dict[str, np.ndarray]:
 def method(name: str, resolution: int):
     if name == "reference":
         return lambda mesh, radius: uvfeat.reference.compute(mesh, FEATURES, radius=radius)
-    if name == "default":
-        return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius)
-    if name.startswith("default:"):
-        samples = int(name.partition(":")[2])
-        return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius, samples=samples)
+    if name.startswith("default"):
+        name, _, surface = name.partition("/")
+        samples = name.partition(":")[2]
+        options = {**({"samples": int(samples)} if samples else {}), **({"surface": surface} if surface else {})}
+        return lambda mesh, radius: uvfeat.compute(mesh, FEATURES, radius, **options)
     if name == "kept":
         return kept_atlas_values
     if name == "pattern":
@@ -93,7 +94,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--meshes", nargs="+", default=["armadillo.obj", "dragon.obj", "stanford-bunny.obj",
                                                          "spot_triangulated.obj", "bob_tri.obj"])
-    parser.add_argument("--radii", nargs="+", type=float, default=[1, 2, 4, 8])
+    parser.add_argument("--radii", nargs="+", type=float, default=[1, 2, 4, 6, 8])
     parser.add_argument("--methods", nargs="+", default=["default", "vertices", "reference"])
     parser.add_argument("--probe", type=int, default=1000)
     parser.add_argument("--repeats", type=int, default=3)
