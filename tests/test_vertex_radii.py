@@ -13,7 +13,7 @@ from conftest import usage_examples
 from uvfeat.vertex_radii import LEVEL_RATIO, interpolate, levels
 
 HK = ["mean_curvature", "gaussian_curvature"]
-SURFELS = dict(quadrature="surfels")
+SURFELS = dict(quadrature="surfels", samples=256)  # the lat-long torus stretches its surfels 3-5 : 1
 
 
 @functools.lru_cache(maxsize=None)

@@ -270,7 +270,7 @@ class Atlas:
         return compute_maps(self, features, radius, samples=samples, compute_resolution=compute_resolution,
                             adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
 
-    def per_vertex(self, features, radius, samples: int = ARGUMENT_DEFAULTS["samples"],
+    def per_vertex(self, features, radius, samples: int | None = None,
                    compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
                    adaptive: bool = ARGUMENT_DEFAULTS["adaptive"], seed: int = ARGUMENT_DEFAULTS["seed"], *,
                    paper_mode: bool = False, **options) -> dict[str, np.ndarray]:
@@ -280,7 +280,8 @@ class Atlas:
         each vertex is the centre of its own neighbourhood: the surfels connected to it inside the
         ball, summed with their exact area moments (DESIGN.md §1.4.9), with no texture computed
         or read, which is both faster and more accurate than reading maps (``query`` does not
-        apply). Otherwise the maps of :meth:`compute` are read with ``query``.
+        apply); ``samples`` (about that many surfels per ball) is then 128 unless named. Otherwise
+        the maps of :meth:`compute` are read with ``query`` (``samples`` 256 unless named).
 
         Returns
         -------

@@ -71,7 +71,7 @@ class Comparison:
                 "errors": self.errors, "reference_errors": self.reference_errors, "timings_s": self.timings}
 
 
-def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"], resolution: int = 1024,
+def compare(mesh: Mesh, features, radius, *, samples: int | None = None, resolution: int = 1024,
             compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
             gaussian_method: str = DEFAULT_OPTIONS["gaussian_method"], seed: int = ARGUMENT_DEFAULTS["seed"],
             query: str = DEFAULT_OPTIONS["query"], method: str = DEFAULT_OPTIONS["method"],
@@ -91,7 +91,8 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     maps otherwise, or where ``query`` is not the default."""
     from .atlas import Atlas
     from .errors import InvalidParameterError
-    from .options import feature_names, resolve_radius, sums_mesh, sums_resolution, vertex_sums_options
+    from .options import (feature_names, maps_samples, resolve_radius, sums_mesh, sums_resolution, sums_samples,
+                          vertex_sums_options)
     from .converged import converged_reference
     from .reference import Reference
 
@@ -121,6 +122,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
     atlas.update(mesh.positions)
     buffers_s = time.perf_counter() - started
     if sums is None:
+        samples = maps_samples(samples)
         maps = atlas.compute(names, radius, samples=samples, compute_resolution=compute_resolution, seed=seed,
                              query=query, quadrature=quadrature or DEFAULT_OPTIONS["quadrature"], **options)
         features_s = time.perf_counter() - started - buffers_s
@@ -128,6 +130,7 @@ def compare(mesh: Mesh, features, radius, *, samples: int = ARGUMENT_DEFAULTS["s
         first = next(iter(maps.values()))
         length, parametric_samples = float(first.radius), float(first.summary["mean_valid_samples"])
     else:
+        samples = sums_samples(samples)
         values = atlas.per_vertex(names, radius, samples=samples, seed=seed, **options, **sums)
         features_s = time.perf_counter() - started - buffers_s
         length, parametric_samples = resolve_radius(radius, mesh.bounding_box_diagonal), None

@@ -6,7 +6,7 @@ import numpy as np
 
 from .atlas import Atlas
 from .interop import mesh_source
-from .options import ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, sums_mesh, surfel_resolution, vertex_sums_options
+from .options import ATLAS_RESOLUTION, sums_mesh, surfel_resolution, vertex_sums_options
 
 
 def compute(mesh, features, radius, *, resolution: int | None = None, precision: str = "f32",
@@ -21,8 +21,9 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     evaluated at the vertices, with no maps. For several calls on the same mesh keep an Atlas.
 
     A mesh without UVs gets uvfeat's automatic atlas. On an atlas of more than one chart (that one,
-    or the mesh's own) each vertex is the centre of its own ball over the surfels by default
-    (``quadrature="surfels"``, about ``samples`` surfels per ball; the pattern's options,
+    or the mesh's own) each vertex is the centre of its own ball over the surfels of the mesh's
+    flat facets by default (``quadrature="surfels"``, ``surface="facets"``, about ``samples``
+    surfels per ball, 128 unless named; the pattern's options,
     ``sampling``, ``margin`` ..., do not apply then), unless ``options`` name ``quadrature`` or
     ``query`` or ask for what the sums do not serve (``method="fit"``, ``adaptive``,
     ``standard_error``, the geodesic methods, ``paper_mode``): then the maps are read. The sums
@@ -30,9 +31,9 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the surface into few
     texels; uvfeat's gives every chart one texel size), and a vertex whose ball
     holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for
-    the maps and, for the surfel sums, to the grid up to 512 whose pyramid holds the level each
-    face's balls of the smallest radius ask for (:func:`~uvfeat.options.surfel_resolution`: 512 at
-    1-2 % of the diagonal on a scan's atlas, 256 or 512 at 4 %, 128 or 256 at 8 %, with the default
+    the maps and, for the surfel sums, to the grid up to 512 whose finest surfels put ``samples`` in
+    a ball of the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 up to about 2 %
+    of the diagonal on a scan's atlas, about 200 at 4 % and 100 at 8 %, with the default
     ``samples``).
 
     Returns
@@ -48,8 +49,7 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
         mesh = mesh.with_atlas(resolution=resolution or ATLAS_RESOLUTION)
     surfels = vertex_sums_options(mesh, features, options, paper_mode) is not None
     if resolution is None:
-        samples = options.get("samples", ARGUMENT_DEFAULTS["samples"])
-        resolution = surfel_resolution(mesh, radius, samples) if surfels else ATLAS_RESOLUTION
+        resolution = surfel_resolution(mesh, radius, options.get("samples")) if surfels else ATLAS_RESOLUTION
     if paper_mode:
         precision = "f16"
     atlas = Atlas(mesh, resolution=resolution, precision=precision, coverage_on_first_use=surfels)

@@ -19,8 +19,8 @@ from . import _core
 from .errors import InvalidParameterError, NeighbourhoodWarning
 from .mesh import _readonly
 from .neighbourhood_flags import FLAGS, notes, texel_flags, vertex_flags, vertex_share
-from .options import (ARGUMENT_DEFAULTS, core_options, feature_names, per_vertex_defaults, resolve_options,
-                      resolve_radius, warn_paper_mode)
+from .options import (ARGUMENT_DEFAULTS, core_options, feature_names, maps_samples, per_vertex_defaults,
+                      resolve_options, resolve_radius, sums_samples, warn_paper_mode)
 from .vertex_radii import LevelReader, levels, per_vertex_radii
 from .vertex_texture import vertex_texture
 
@@ -251,7 +251,7 @@ def compute_maps(atlas, features, radius, *, samples: int, compute_resolution: i
     return out
 
 
-def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: int, adaptive: bool, seed: int,
+def vertex_values(atlas, features, radius, *, samples: int | None, compute_resolution: int, adaptive: bool, seed: int,
                   paper_mode: bool, options: dict) -> dict[str, np.ndarray]:
     """The work behind :meth:`uvfeat.Atlas.per_vertex`: with ``quadrature="surfels"`` and the
     integral estimators each vertex is the centre of its own neighbourhood, summed over the
@@ -262,7 +262,7 @@ def vertex_values(atlas, features, radius, *, samples: int, compute_resolution: 
                                    adaptive=adaptive, seed=seed, paper_mode=paper_mode, **options)[0]
 
 
-def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_DEFAULTS["samples"],
+def vertex_values_and_flags(atlas, features, radius, *, samples: int | None = None,
                             compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"],
                             adaptive: bool = ARGUMENT_DEFAULTS["adaptive"], seed: int = ARGUMENT_DEFAULTS["seed"],
                             paper_mode: bool = False, **options) -> tuple[dict, dict]:
@@ -278,7 +278,7 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
     def settings(r):
-        return _core_settings(names, r, samples, compute_resolution, adaptive, seed, opts)
+        return _core_settings(names, r, sums_samples(samples), compute_resolution, adaptive, seed, opts)
 
     # Per call: the radius and its settings (at the largest of the vertices' own radii, which the
     # core reads instead), the vertices' radii, a label.
@@ -289,8 +289,9 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
         calls = [(length, settings(length), None, _scale(r))
                  for r, length in ((r, resolve_radius(r, diagonal)) for r in (radius if stack else [radius]))]
     if not _core.sums_apply(atlas._core, calls[0][1]):
-        maps = compute_maps(atlas, features, radius, samples=samples, compute_resolution=compute_resolution,
-                            adaptive=adaptive, seed=seed, paper_mode=paper_mode, options=options)
+        maps = compute_maps(atlas, features, radius, samples=maps_samples(samples),
+                            compute_resolution=compute_resolution, adaptive=adaptive, seed=seed,
+                            paper_mode=paper_mode, options=options)
         return {name: feature.per_vertex() for name, feature in maps.items()}, maps[names[0]].vertex_flags()
     if paper_mode:
         warn_paper_mode(stacklevel=5)
@@ -307,7 +308,7 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int = ARGUMENT_
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
         texts += notes(counts, atlas.mesh.n_vertices, label)
         few = int(np.count_nonzero((summed > 0) & (summed < FEW_SURFELS)))
-        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution, samples)
+        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution, sums_samples(samples))
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
     values = {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}

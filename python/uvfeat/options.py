@@ -41,6 +41,23 @@ PAPER_OPTIONS = _core.paper_options()
 #: object-space reference and ``converged_reference`` measure (DESIGN.md §1.4.9).
 SURFEL_DEFAULTS = {"quadrature": "surfels", "surface": "facets"}
 
+#: About how many surfels a ball sums where the per-vertex values are the surfel sums at the
+#: vertices and the call names no ``samples`` (the pattern's maps take ``ARGUMENT_DEFAULTS["samples"]``
+#: points per texel). Half the pattern's count: the surfels are exact pieces of the facets, and on the
+#: shared scans 128 kept H and K within 0.63 % of the converged reference (DESIGN.md §1.4.9).
+SURFELS_PER_BALL = 128
+
+
+def sums_samples(samples: int | None) -> int:
+    """``samples`` as the sums at the vertices take it: :data:`SURFELS_PER_BALL` where None."""
+    return SURFELS_PER_BALL if samples is None else samples
+
+
+def maps_samples(samples: int | None) -> int:
+    """``samples`` as the maps take it: the pattern's default where None."""
+    return ARGUMENT_DEFAULTS["samples"] if samples is None else samples
+
+
 #: The largest atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel
 #: sums (:func:`vertex_sums_options`); :func:`surfel_resolution` takes less for large radii.
 SURFEL_RESOLUTION = 512
@@ -106,14 +123,13 @@ def sums_mesh(mesh, features, options: dict, paper_mode: bool):
     return mesh
 
 
-def surfel_resolution(mesh, radius, samples: int = ARGUMENT_DEFAULTS["samples"]) -> int:
+def surfel_resolution(mesh, radius, samples: int | None = None) -> int:
     """The atlas resolution of the surfel sums at the vertices of ``mesh`` for ``radius`` (a length,
     a percentage, a list, or one per vertex: the smallest counts) over about ``samples`` surfels per
-    ball: the smallest power of two up to :data:`SURFEL_RESOLUTION` whose finest surfels, of the mean
-    size on its charts, put ``samples`` in a ball, halved while at most a quarter of the surface
-    asks for its finest level (``_core.surfel_grid_width``): half the width holds every coarser level and builds its surfels
-    in a quarter of the time. Radii the computation will reject give :data:`SURFEL_RESOLUTION` (the
-    computation names them)."""
+    ball (:func:`sums_samples`): the width whose finest surfels, of the mean size on its charts, put
+    ``samples`` in a plane's ball, to a multiple of 16 from 64 up to :data:`SURFEL_RESOLUTION`
+    (``_core.surfel_grid_width``). Radii the computation will reject give
+    :data:`SURFEL_RESOLUTION` (the computation names them)."""
     diagonal = mesh.bounding_box_diagonal
     try:
         own = per_vertex_radii(radius, mesh.n_vertices)
@@ -125,10 +141,11 @@ def surfel_resolution(mesh, radius, samples: int = ARGUMENT_DEFAULTS["samples"])
             smallest = resolve_radius(radius, diagonal)
     except (InvalidParameterError, TypeError, ValueError):
         return SURFEL_RESOLUTION
-    return _core.surfel_grid_width(mesh.topology, mesh.positions, smallest, float(samples), SURFEL_RESOLUTION)
+    return _core.surfel_grid_width(mesh.topology, mesh.positions, smallest, float(sums_samples(samples)),
+                                   SURFEL_RESOLUTION)
 
 
-def sums_resolution(mesh, radius, resolution: int, samples: int = ARGUMENT_DEFAULTS["samples"]) -> int:
+def sums_resolution(mesh, radius, resolution: int, samples: int | None = None) -> int:
     """The atlas resolution of the surfel sums at the vertices where a command or ``compare`` was
     given ``resolution``: the surfel grid of the radius (:func:`surfel_resolution`) where it is the
     default :data:`ATLAS_RESOLUTION` (a default cannot be told from a choice there), else

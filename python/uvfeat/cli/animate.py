@@ -11,7 +11,7 @@ import numpy as np
 from .._core import __version__
 from ..animation.frame_rate import DEFAULT_FPS
 from ..errors import InvalidParameterError
-from ..options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS
+from ..options import ARGUMENT_DEFAULTS, DEFAULT_OPTIONS, maps_samples
 from ..pictures.surface_plot import VIEWS
 from ..unwrap import UV_POLICIES
 from ..files.writers import write_json
@@ -55,7 +55,7 @@ def run(args) -> int:
     quadrature = args.quadrature or DEFAULT_OPTIONS["quadrature"]
     surface = args.surface or DEFAULT_OPTIONS["surface"]
     options = dict(frames=args.frames, fps=args.fps, animation=args.animation, resolution=args.resolution, uv=args.uv,
-                   samples=args.samples, compute_resolution=args.compute_resolution, seed=args.seed,
+                   samples=maps_samples(args.samples), compute_resolution=args.compute_resolution, seed=args.seed,
                    method=args.method, sampling=args.sampling, quadrature=quadrature, surface=surface)
     frames, notes = open_animation(args.mesh, args.feature, args.radius, **options)
     notes += frames.atlas.warnings()
@@ -81,7 +81,7 @@ def run(args) -> int:
         if per_frame else {}
     summary = {
         "uvfeat": __version__, "mesh": frames.mesh.name, "animation": frames.animation_name, "frames": total,
-        "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": args.samples,
+        "settings": {"features": frames.features, "radius": frames.radius, "fps": args.fps, "samples": options["samples"],
                      "resolution": args.resolution, "compute_resolution": args.compute_resolution, "seed": args.seed,
                      "method": args.method, "sampling": args.sampling, "quadrature": quadrature,
                      "surface": surface},

@@ -7,7 +7,7 @@ import argparse
 import contextlib
 import time
 
-from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, FEATURES
+from ..options import ARGUMENT_DEFAULTS, CHOICES, DEFAULT_OPTIONS, FEATURES, SURFELS_PER_BALL
 from ..unwrap import UV_POLICIES
 
 MESH_HELP = "mesh file (obj, ply, glb, gltf, off, stl)"
@@ -96,9 +96,10 @@ def add_uv_options(parser: argparse.ArgumentParser) -> None:
 
 
 def add_feature_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--samples", type=int, default=ARGUMENT_DEFAULTS["samples"],
+    parser.add_argument("--samples", type=int, default=None,
                         help="samples per neighbourhood: the pattern's points per texel, or about as many "
-                             "surfels per ball with the surfels (fewer: faster and coarser; default %(default)s)")
+                             "surfels per ball with the surfels (fewer: faster and coarser; default: "
+                             f"{ARGUMENT_DEFAULTS['samples']} points, {SURFELS_PER_BALL} surfels)")
     parser.add_argument("--compute-resolution", type=int, default=ARGUMENT_DEFAULTS["compute_resolution"],
                         help="computation texture size (default %(default)s)")
     parser.add_argument("--method", choices=CHOICES["method"], default=DEFAULT_OPTIONS["method"],

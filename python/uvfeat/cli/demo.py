@@ -36,7 +36,7 @@ def run(args) -> int:
     write_atlas(mesh, args, out, [], started)
     args.out = os.path.join(root, "features")
     args.feature, args.radius = "mean_curvature,gaussian_curvature,shape_index", "1%,4%,16%"
-    args.samples, args.adaptive, args.paper_mode = 256, False, False
+    args.samples, args.adaptive, args.paper_mode = None, False, False
     args.seed, args.query, args.standard_error, args.method, args.directions = 0, "texture", False, "integral", None
     args.sampling, args.surface = DEFAULT_OPTIONS["sampling"], None
     args.quadrature = None

@@ -17,8 +17,8 @@ from ..errors import InvalidParameterError
 from ..io import atomic_file, remove_partials
 from .notes import recorded_notes
 from ..options import (ARGUMENT_DEFAULTS, ATLAS_RESOLUTION, DEFAULT_OPTIONS, PAPER_OPTIONS, check_query,
-                       check_resolution, feature_names, parse_radius, resolve_radius, sums_mesh,
-                       sums_resolution, vertex_sums_options)
+                       check_resolution, feature_names, maps_samples, parse_radius, resolve_radius, sums_mesh,
+                       sums_resolution, sums_samples, vertex_sums_options)
 from .writers import write_json, write_per_vertex
 
 SUMMARY = "summary.json"
@@ -52,7 +52,9 @@ class FeatureJob:
 
     features: tuple[str, ...]
     radii: tuple[str, ...]
-    samples: int = ARGUMENT_DEFAULTS["samples"]
+    #: None: 128 surfels per ball for the sums at the vertices, the pattern's 256 points per texel
+    #: for the maps (:func:`~uvfeat.options.sums_samples`, :func:`~uvfeat.options.maps_samples`).
+    samples: int | None = None
     resolution: int = ATLAS_RESOLUTION
     compute_resolution: int = ARGUMENT_DEFAULTS["compute_resolution"]
     adaptive: bool = False
@@ -81,7 +83,7 @@ class FeatureJob:
         check_resolution(self.resolution)
         check_query(self.query)
         options = {
-            "samples": self.samples, "compute_resolution": self.compute_resolution,
+            "samples": maps_samples(self.samples), "compute_resolution": self.compute_resolution,
             "adaptive": self.adaptive, "seed": self.seed, "method": self.method, "sampling": self.sampling,
             "standard_error": self.standard_error, **self._named_surface()}
         if self.quadrature is not None:
@@ -117,8 +119,8 @@ class FeatureJob:
 
     def compute_options(self) -> dict:
         """The keyword options of :meth:`uvfeat.Atlas.compute` this job runs with."""
-        return {"samples": self.samples, "compute_resolution": self.compute_resolution, "adaptive": self.adaptive,
-                "seed": self.seed, "paper_mode": self.paper_mode, "query": self.query,
+        return {"samples": maps_samples(self.samples), "compute_resolution": self.compute_resolution,
+                "adaptive": self.adaptive, "seed": self.seed, "paper_mode": self.paper_mode, "query": self.query,
                 "standard_error": self.standard_error, "method": self.method, "sampling": self.sampling,
                 "quadrature": self.quadrature or DEFAULT_OPTIONS["quadrature"], **self._named_surface()}
 
@@ -135,7 +137,9 @@ class FeatureJob:
         the vertices, as ``uvfeat.compute`` gives them (by default on an atlas of more than one
         chart, or named with ``quadrature="surfels"``); None where they are read from the maps."""
         added = vertex_sums_options(mesh, self.features, self._named(), self.paper_mode)
-        return None if added is None else {**self.compute_options(), **added, **self._named_surface()}
+        if added is None:
+            return None
+        return {**self.compute_options(), **added, **self._named_surface(), "samples": sums_samples(self.samples)}
 
     def sums_mesh(self, mesh):
         """The mesh the sums at the vertices run on, as ``uvfeat.compute``'s

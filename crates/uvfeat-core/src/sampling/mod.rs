@@ -36,5 +36,5 @@ pub use reach::{Reach, DIRECTIONS};
 pub use sample::{moment_ramp_area, moment_ramp_centre, ramp_centre, Sample, SampleCounts};
 pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
-pub use surfel_grid::{grid_width, surfel_grid_width, FaceScale};
+pub use surfel_grid::surfel_grid_width;
 pub use surfels::{gather_surfels, surfel_centre, SurfelBall};

@@ -202,3 +202,18 @@ impl SurfelBall {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_texel_counts_as_the_square_of_its_area_up_to_a_stretch_of_two() {
+        // 1.5 : 1 and 2 : 1 at unit area: the unit square.
+        for stretch in [1.0, 1.5, 2.0] {
+            assert!((level_side(f64::sqrt(stretch), 1.0) - 1.0).abs() < 1e-12, "{stretch}");
+        }
+        // 8 : 1 (sides sqrt(8) and 1 / sqrt(8)): a square of side 2, four times the area's.
+        assert!((level_side(8.0_f64.sqrt(), 1.0) - 2.0).abs() < 1e-12);
+    }
+}
