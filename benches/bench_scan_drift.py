@@ -9,7 +9,8 @@ Prints two Markdown tables:
 
 - accuracy: %AE (range-normalised) and bias (mean signed error over mean |truth|) of H and K at
   `--probe` random vertices, for the coarse reference, `uvfeat.compute`'s defaults (`default`:
-  on these many-chart atlases the values at the vertices from the surfels, 512² buffers) and each
+  on these many-chart atlases the values at the vertices from the surfels of the facets, on the surfel
+  grid of the radius) and each
   quadrature's maps read with the direct query (`surfels/facets` is `quadrature="surfels",
   surface="facets"`), with CPU seconds;
 - cost: wall and CPU seconds of the 512² feature maps (H + K) of the first mesh, for the default
