@@ -32,7 +32,7 @@ def test_python_signatures_default_to_the_core(function):
     shared = [name for name in ARGUMENT_DEFAULTS if name in parameters]
     assert "samples" in shared and "seed" in shared
     for name in shared:
-        # compare's samples None: the pattern's 256 points or the sums' 128 surfels per ball.
+        # compare's samples None: the pattern's 256 points or the sums' 160 surfels per ball.
         expected = None if (function, name) == (uvfeat.compare.compare, "samples") else ARGUMENT_DEFAULTS[name]
         assert parameters[name].default == expected, name
     for name in set(parameters) & set(DEFAULT_OPTIONS):
@@ -49,7 +49,7 @@ def test_the_command_line_defaults_to_the_core(command):
     args = parser.parse_args([command, "mesh.obj"])
     for name in ("compute_resolution", "seed"):
         assert getattr(args, name) == ARGUMENT_DEFAULTS[name], name
-    # None: the pattern's 256 points per texel, or 128 surfels per ball for the sums at the vertices.
+    # None: the pattern's 256 points per texel, or 160 surfels per ball for the sums at the vertices.
     assert args.samples is None
     for name in ("method", "sampling") + (("query",) if command != "animate" else ()):
         assert getattr(args, name) == DEFAULT_OPTIONS[name], name

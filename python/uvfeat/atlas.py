@@ -280,7 +280,7 @@ class Atlas:
         each vertex is the centre of its own neighbourhood: the surfels connected to it inside the
         ball, summed with their exact area moments (DESIGN.md §1.4.9), with no texture computed
         or read, which is both faster and more accurate than reading maps (``query`` does not
-        apply); ``samples`` (about that many surfels per ball) is then 128 unless named. Otherwise
+        apply); ``samples`` (about that many surfels per ball) is then 160 unless named. Otherwise
         the maps of :meth:`compute` are read with ``query`` (``samples`` 256 unless named).
 
         Returns

@@ -23,7 +23,7 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     A mesh without UVs gets uvfeat's automatic atlas. On an atlas of more than one chart (that one,
     or the mesh's own) each vertex is the centre of its own ball over the surfels of the mesh's
     flat facets by default (``quadrature="surfels"``, ``surface="facets"``, about ``samples``
-    surfels per ball, 128 unless named; the pattern's options,
+    surfels per ball, 160 unless named; the pattern's options,
     ``sampling``, ``margin`` ..., do not apply then), unless ``options`` name ``quadrature`` or
     ``query`` or ask for what the sums do not serve (``method="fit"``, ``adaptive``,
     ``standard_error``, the geodesic methods, ``paper_mode``): then the maps are read. The sums

@@ -43,9 +43,10 @@ SURFEL_DEFAULTS = {"quadrature": "surfels", "surface": "facets"}
 
 #: About how many surfels a ball sums where the per-vertex values are the surfel sums at the
 #: vertices and the call names no ``samples`` (the pattern's maps take ``ARGUMENT_DEFAULTS["samples"]``
-#: points per texel). Half the pattern's count: the surfels are exact pieces of the facets, and on the
-#: shared scans 128 kept H and K within 0.63 % of the converged reference (DESIGN.md §1.4.9).
-SURFELS_PER_BALL = 128
+#: points per texel). Fewer than the pattern's: the surfels are exact pieces of the facets, and
+#: their count sets the time of the sums; K, read from every surfel's normal curvature, is the
+#: first to lose from fewer (DESIGN.md §1.4.9).
+SURFELS_PER_BALL = 160
 
 
 def sums_samples(samples: int | None) -> int:

@@ -52,7 +52,7 @@ class FeatureJob:
 
     features: tuple[str, ...]
     radii: tuple[str, ...]
-    #: None: 128 surfels per ball for the sums at the vertices, the pattern's 256 points per texel
+    #: None: 160 surfels per ball for the sums at the vertices, the pattern's 256 points per texel
     #: for the maps (:func:`~uvfeat.options.sums_samples`, :func:`~uvfeat.options.maps_samples`).
     samples: int | None = None
     resolution: int = ATLAS_RESOLUTION
