@@ -325,15 +325,17 @@ FEW_SURFELS = 8
 def _coarse_ball_notes(few: int, n_vertices: int, scale: str, resolution: int, samples: int) -> list[str]:
     """The note for ``few`` vertices whose balls summed fewer than :data:`FEW_SURFELS` surfels
     (balls with none took the object-space reference's values: ``_fill_empty_balls``): ``samples``
-    asked for so few (a ball sums half to twice as many), or the radius spans about a texel."""
+    asked for so few, or the radius spans about a texel, or the vertex's piece of surface is cut off
+    from its neighbours in the atlas (on the dragon, a chart of one face among single-face charts)."""
     if not few:
         return []
     share = f"{scale}, {vertex_share(few, n_vertices)} summed fewer than {FEW_SURFELS} surfels"
     if samples < 2 * FEW_SURFELS:
         return [f"{share}: samples={samples} sums about that many surfels per ball and their values are coarse "
                 "(raise samples)"]
-    return [f"{share}: the radius spans about a texel of the {resolution}² grid there and their values are coarse "
-            "(a finer resolution, or uvfeat.reference, serves such radii)"]
+    return [f"{share}: the radius spans about a texel of the {resolution}² grid there, or their piece of surface "
+            "is cut off from its neighbours in the atlas, and their values are coarse (a finer resolution, or "
+            "uvfeat.reference, serves them)"]
 
 
 def _reference_of(mesh):
