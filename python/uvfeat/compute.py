@@ -31,9 +31,9 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     (:func:`~uvfeat.options.sums_mesh`: a file's atlas may squeeze parts of the surface into few
     texels; uvfeat's gives every chart one texel size), and a vertex whose ball
     holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for
-    the maps and, for the surfel sums, to the grid up to 768 whose finest surfels put ``samples`` in
-    a ball of the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 768 up to about 1 %
-    of the diagonal on a scan's atlas, about 250 at 4 % and 125 at 8 %, with the default
+    the maps and, for the surfel sums, to the grid up to 512 whose finest surfels put ``samples`` in
+    a ball of the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 up to about 2 %
+    of the diagonal on a scan's atlas, about 200 at 4 % and 100 at 8 %, with the default
     ``samples``).
 
     Returns

@@ -60,10 +60,8 @@ def maps_samples(samples: int | None) -> int:
 
 
 #: The largest atlas resolution ``uvfeat.compute`` takes where the per-vertex values are the surfel
-#: sums (:func:`vertex_sums_options`); :func:`surfel_resolution` takes less for larger radii. A scan's
-#: atlas reaches it at about 1 % of the diagonal, where a ball of 768² surfels holds about half
-#: of ``samples`` (DESIGN.md §1.4.9).
-SURFEL_RESOLUTION = 768
+#: sums (:func:`vertex_sums_options`); :func:`surfel_resolution` takes less for large radii.
+SURFEL_RESOLUTION = 512
 
 #: The atlas resolution ``uvfeat.compute`` takes otherwise.
 ATLAS_RESOLUTION = 1024
