@@ -33,7 +33,7 @@ def compute(mesh, features, radius, *, resolution: int | None = None, precision:
     holds no surfel takes the object-space reference's value. ``resolution`` defaults to 1024 for
     the maps and, for the surfel sums, to the grid up to 512 whose finest surfels put ``samples`` in
     a ball of the smallest radius (:func:`~uvfeat.options.surfel_resolution`: 512 up to about 2 %
-    of the diagonal on a scan's atlas, about 200 at 4 % and 100 at 8 %, with the default
+    of the diagonal on a scan's atlas, about 200-250 at 4 % and 110-130 at 8 %, with the default
     ``samples``).
 
     Returns
