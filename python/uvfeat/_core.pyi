@@ -43,12 +43,11 @@ _UV = Sequence[float]
 def atlas_bytes(resolution: int, n_faces: int) -> int:
     """Bytes an atlas of ``n_faces`` faces takes at ``resolution``² (buffers and per-face tables)."""
 
-def surfel_grid_width(topology: Topology, positions: NDArray[np.float64], radius: float, per_ball: float,
-                      largest: int) -> int:
-    """The surfel grid (a power of two from 128 up to ``largest``) for balls of ``radius`` summed
-    over about ``per_ball`` surfels on the mesh of ``topology`` at ``positions``: the smallest whose
-    finest surfels, of the mean size, put ``per_ball`` in a ball, halved while at most a quarter of
-    the surface asks for its finest level."""
+def surfel_grid_width(surface_area: float, uv_area: float, radius: float, per_ball: float, largest: int) -> int:
+    """The surfel grid for balls of ``radius`` summed over about ``per_ball`` surfels on charts of
+    ``surface_area`` over ``uv_area`` of the unit square: the width whose texels of the mean size put
+    ``per_ball`` in a plane's ball, to a multiple of 16 from 64 up to ``largest``; ``largest`` where
+    the areas, the radius or ``per_ball`` are not positive and finite."""
 
 def shape(
     name: str, sizes: list[float], counts: list[int], mirrored: bool = False

@@ -277,8 +277,9 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int | None = No
     names = feature_names(features)
     stack = own_radii is None and isinstance(radius, (list, tuple, np.ndarray))
     diagonal = atlas.mesh.bounding_box_diagonal
+    surfels_per_ball = sums_samples(samples)
     def settings(r):
-        return _core_settings(names, r, sums_samples(samples), compute_resolution, adaptive, seed, opts)
+        return _core_settings(names, r, surfels_per_ball, compute_resolution, adaptive, seed, opts)
 
     # Per call: the radius and its settings (at the largest of the vertices' own radii, which the
     # core reads instead), the vertices' radii, a label.
@@ -308,7 +309,7 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int | None = No
         counts = dict.fromkeys(FLAGS, 0) | {"truncated": int(np.count_nonzero(border))}
         texts += notes(counts, atlas.mesh.n_vertices, label)
         few = int(np.count_nonzero((summed > 0) & (summed < FEW_SURFELS)))
-        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution, sums_samples(samples))
+        texts += _coarse_ball_notes(few, atlas.mesh.n_vertices, label, atlas.resolution, surfels_per_ball)
     if texts:
         warnings.warn("; ".join(texts), NeighbourhoodWarning, stacklevel=4)
     values = {name: np.stack([v[k] for v in per_radius]) if stack else per_radius[0][k] for k, name in enumerate(names)}

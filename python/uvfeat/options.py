@@ -142,7 +142,7 @@ def surfel_resolution(mesh, radius, samples: int | None = None) -> int:
             smallest = resolve_radius(radius, diagonal)
     except (InvalidParameterError, TypeError, ValueError):
         return SURFEL_RESOLUTION
-    return _core.surfel_grid_width(mesh.topology, mesh.positions, smallest, float(sums_samples(samples)),
+    return _core.surfel_grid_width(mesh.surface_area, mesh.uv_area, smallest, float(sums_samples(samples)),
                                    SURFEL_RESOLUTION)
 
 

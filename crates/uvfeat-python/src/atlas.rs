@@ -36,20 +36,11 @@ pub fn atlas_bytes(resolution: usize, n_faces: usize) -> u64 {
     uvfeat_core::atlas::atlas_bytes(resolution, n_faces)
 }
 
-/// The surfel grid for balls of `radius` summed over about `per_ball` surfels on the mesh of
-/// `topology` at `positions` (`uvfeat_core::sampling::surfel_grid_width`).
+/// The surfel grid for balls of `radius` summed over about `per_ball` surfels on charts of
+/// `surface_area` over `uv_area` (`uvfeat_core::sampling::surfel_grid_width`).
 #[pyfunction]
-pub fn surfel_grid_width(
-    py: Python<'_>,
-    topology: &PyTopology,
-    positions: PyReadonlyArray2<'_, f64>,
-    radius: f64,
-    per_ball: f64,
-    largest: usize,
-) -> PyResult<usize> {
-    let positions = positions_of(&positions)?;
-    let topology = &topology.inner;
-    guarded(py, || Ok(uvfeat_core::sampling::surfel_grid_width(topology, &positions, radius, per_ball, largest)))
+pub fn surfel_grid_width(surface_area: f64, uv_area: f64, radius: f64, per_ball: f64, largest: usize) -> usize {
+    uvfeat_core::sampling::surfel_grid_width(surface_area, uv_area, radius, per_ball, largest)
 }
 
 #[pymethods]
