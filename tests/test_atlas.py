@@ -85,7 +85,7 @@ def test_update_recomputes_the_buffers_and_keeps_the_coverage(torus_atlas):
         atlas.update(np.full_like(mesh.positions, np.nan))
 
 
-def test_coverage_on_first_use_gives_the_same_values_views_and_maps():
+def test_coverage_on_first_use_gives_the_same_values_views_and_maps_and_follows_updates():
     mesh = uvfeat.shapes.torus(2.0, 0.5, 48, 24).with_atlas()
     eager, deferred = (uvfeat.Atlas(mesh, 128, coverage_on_first_use=later) for later in (False, True))
     hk = ["mean_curvature", "gaussian_curvature"]
@@ -102,6 +102,17 @@ def test_coverage_on_first_use_gives_the_same_values_views_and_maps():
     surfel_maps = {atlas: atlas.compute("mean_curvature", "10%", compute_resolution=64, quadrature="surfels",
                                         lookup="bilinear")["mean_curvature"].texture for atlas in (fresh, eager)}
     np.testing.assert_array_equal(surfel_maps[fresh], surfel_maps[eager])
+    # The faces' patches and seam maps follow new positions, built (deferred, eager) or not yet
+    # (a fresh deferred atlas moved before any map).
+    moved = mesh.positions * np.array([1.2, 1.0, 0.8])
+    later = uvfeat.Atlas(mesh, 128, coverage_on_first_use=True)
+    moved_maps = []
+    for atlas in (deferred, eager, later):
+        atlas.update(moved)
+        moved_maps.append(atlas.compute("mean_curvature", "10%", compute_resolution=64, seed=1)["mean_curvature"].texture)
+    np.testing.assert_array_equal(moved_maps[0], moved_maps[1])
+    np.testing.assert_array_equal(moved_maps[2], moved_maps[1])
+    assert not np.array_equal(moved_maps[1], maps.texture)
 
 
 def test_a_mesh_too_large_for_the_memory_budget_is_refused_before_anything_is_built(monkeypatch):

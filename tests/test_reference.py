@@ -40,6 +40,10 @@ def test_reference_object_answers_radii_options_and_vertex_subsets(sphere):
     uniform = ref.compute("mean_curvature", "10%", volume_weighting="uniform")["mean_curvature"]
     assert abs(np.median(uniform) - 8 / 9) < 0.03  # the paper's literal weighting: biased to 8H/9 (DESIGN.md §3.1)
     assert set(ref.last_timings) == {"connectivity_s", "estimation_s"}
+    # A mesh keeps its own, built once (the values at the vertices fill balls without surfels from it).
+    kept = sphere.reference
+    assert kept is sphere.reference and isinstance(kept, uvfeat.reference.Reference)
+    np.testing.assert_array_equal(kept.compute("mean_curvature", "10%", vertices=picked)["mean_curvature"], subset)
 
 
 def test_geodesic_area_variants(sphere):

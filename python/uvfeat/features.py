@@ -8,7 +8,6 @@ length³ for the sphere volumes; shape index in [-1, 1] (+1 convex cap).
 
 from __future__ import annotations
 
-import functools
 import time
 import warnings
 from dataclasses import dataclass, field
@@ -297,12 +296,10 @@ def vertex_values_and_flags(atlas, features, radius, *, samples: int | None = No
     if paper_mode:
         warn_paper_mode(stacklevel=5)
     per_radius, truncated, texts = [], [], []
-    # Built on the first ball without surfels, then shared by the radii.
-    reference = functools.cache(lambda: _reference_of(atlas.mesh))
     for length, call_settings, radii, label in calls:
         values, summed, border = _core.vertex_feature_values(atlas._core, call_settings, radii)
         if radii is None:
-            _fill_empty_balls(atlas.mesh, reference, names, length, values, summed, opts)
+            _fill_empty_balls(atlas.mesh, names, length, values, summed, opts)
         per_radius.append(values)
         truncated.append(border > 0)
         # The sums say where a border cuts the ball; the other flags read the maps' samples.
@@ -339,18 +336,11 @@ def _coarse_ball_notes(few: int, n_vertices: int, scale: str, resolution: int, s
             "uvfeat.reference, serves them)"]
 
 
-def _reference_of(mesh):
-    from .reference import Reference
-
-    return Reference(mesh)
-
-
-def _fill_empty_balls(mesh, reference, names: list[str], radius: float, values: list, summed: np.ndarray,
-                      opts: dict) -> None:
+def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summed: np.ndarray, opts: dict) -> None:
     """Where the ball of a vertex of a face held no surfel, or none beyond the inner exclusion
     (its atlas texels are longer than the ball there: a sliver chart, UVs squeezed into a few
     texels), the sums give NaN; ``values`` take the object-space reference's there instead, with
-    the same estimators (on the facets; ``reference()`` gives the mesh's :class:`Reference`). A
+    the same estimators (on the facets, with the mesh's kept :attr:`~uvfeat.Mesh.reference`). A
     planar point's shape index is NaN by design, not a failed ball."""
     on_faces = np.zeros(mesh.n_vertices, dtype=bool)
     on_faces[mesh.faces.ravel()] = True
@@ -367,7 +357,7 @@ def _fill_empty_balls(mesh, reference, names: list[str], radius: float, values: 
     with warnings.catch_warnings():
         # A ball with no other vertex stays NaN, as the reference says of its own calls.
         warnings.simplefilter("ignore", UserWarning)
-        filled = reference().compute(names, radius, vertices=empty, **estimators)
+        filled = mesh.reference.compute(names, radius, vertices=empty, **estimators)
     for k, name in enumerate(names):
         values[k][empty] = filled[name]
 

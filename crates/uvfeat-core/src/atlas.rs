@@ -5,7 +5,7 @@
 use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::frame::Frame;
-use crate::mesh::Topology;
+use crate::mesh::{SeamMap, Topology};
 use crate::raster::{Coverage, FacePatches, GeometryBuffers, Precision, Surface, Surfels};
 use glam::{DVec2, DVec3};
 use std::sync::{Arc, OnceLock};
@@ -22,8 +22,9 @@ pub struct AtlasOptions {
     pub precision: Precision,
     /// Largest number of bytes the buffers may take.
     pub memory_budget: u64,
-    /// Rasterise the coverage on its first use instead of beside the frame (an atlas for the
-    /// values at the vertices, which read only the surfels).
+    /// Rasterise the coverage, and build the faces' patches and seam maps, on their first use
+    /// instead of beside the frame (an atlas for the values at the vertices, which read only the
+    /// surfels).
     pub coverage_on_first_use: bool,
 }
 
@@ -52,8 +53,10 @@ pub struct Atlas {
     /// Per-frame surfel pyramids on the smooth surface and on the facets, built on first use (see
     /// [`Atlas::surfels`]).
     surfels: [OnceLock<Surfels>; 2],
-    /// Per-frame compact surface patches of the faces (the sampler's fast path).
-    pub patches: FacePatches,
+    /// Per-frame compact surface patches of the faces (see [`Atlas::patches`]).
+    patches: OnceLock<FacePatches>,
+    /// Per-frame transition maps of the boundary sides (see [`Atlas::seam_maps`]).
+    seam_maps: OnceLock<Vec<Option<SeamMap>>>,
     /// Storage precision of positions and normals.
     pub precision: Precision,
 }
@@ -66,20 +69,28 @@ impl Atlas {
     /// would take), and the position errors of [`Frame::new`].
     pub fn new(topology: Arc<Topology>, positions: &[DVec3], options: &AtlasOptions) -> Result<Self> {
         check_resolution(options)?;
-        let frame_and_patches = || {
+        // The pattern's maps read the faces' patches and seam maps besides the coverage, which
+        // depends on the UVs only: it is rasterised while the frame and those tables are
+        // evaluated, so that the one-thread parts of each overlap (the patches built after the
+        // join left one core idle for 20-30 ms of a 200K-face mesh's atlas). The values at the
+        // vertices read none of the three: such an atlas builds each on first use (the dragon's
+        // seam maps and patches: 25-35 ms of its 35-50 ms frame).
+        let eager = !options.coverage_on_first_use;
+        let frame_and_tables = || {
             let frame = Frame::new(&topology, positions)?;
             cancel::check()?;
-            let patches = FacePatches::new(&topology, &frame);
-            Ok((frame, patches))
+            let tables = eager.then(|| (FacePatches::new(&topology, &frame), frame.seam_maps(&topology)));
+            Ok((frame, tables))
         };
-        // The coverage depends on the UVs only: it is rasterised while the frame and its face
-        // patches are evaluated, so that the one-thread parts of each overlap (the patches built
-        // after the join left one core idle for 20-30 ms of a 200K-face mesh's atlas).
-        let ((frame, patches), coverage) = if options.coverage_on_first_use {
-            (frame_and_patches()?, OnceLock::new())
-        } else {
-            let (frame, coverage) = rayon::join(frame_and_patches, || Coverage::build(&topology, options.resolution));
+        let ((frame, tables), coverage) = if eager {
+            let (frame, coverage) = rayon::join(frame_and_tables, || Coverage::build(&topology, options.resolution));
             (frame?, OnceLock::from(coverage))
+        } else {
+            (frame_and_tables()?, OnceLock::new())
+        };
+        let (patches, seam_maps) = match tables {
+            Some((patches, seam_maps)) => (OnceLock::from(patches), OnceLock::from(seam_maps)),
+            None => (OnceLock::new(), OnceLock::new()),
         };
         cancel::check()?;
         Ok(Self {
@@ -91,6 +102,7 @@ impl Atlas {
             buffers: OnceLock::new(),
             surfels: Default::default(),
             patches,
+            seam_maps,
             precision: options.precision,
         })
     }
@@ -131,9 +143,22 @@ impl Atlas {
         built_once(cell, || Surfels::build(&self.topology, &self.frame, self.resolution(), surface), || &NONE)
     }
 
-    /// Re-evaluates the per-frame quantities (normals, metrics, seam maps, patches; the buffers on
-    /// their next use) for new positions; charts, coverage, border texels and edge tables are
-    /// reused.
+    /// The compact surface patches of the faces (the pattern's fast path), built with the frame,
+    /// or on first use with [`AtlasOptions::coverage_on_first_use`].
+    pub fn patches(&self) -> &FacePatches {
+        kept_once(&self.patches, || FacePatches::new(&self.topology, &self.frame))
+    }
+
+    /// The transition map of each boundary side (`None` where nothing is across), which the
+    /// pattern's samples cross seams by; built with the frame, or on first use with
+    /// [`AtlasOptions::coverage_on_first_use`].
+    pub fn seam_maps(&self) -> &[Option<SeamMap>] {
+        kept_once::<Vec<_>>(&self.seam_maps, || self.frame.seam_maps(&self.topology))
+    }
+
+    /// Re-evaluates the per-frame quantities (normals, metrics, and the seam maps and patches
+    /// where built; the buffers and surfels on their next use) for new positions; charts,
+    /// coverage, border texels and edge tables are reused.
     ///
     /// # Errors
     /// Vertex count mismatch or non-finite positions; the atlas is unchanged then.
@@ -141,7 +166,12 @@ impl Atlas {
         self.frame.refresh(&self.topology, positions)?;
         self.buffers = OnceLock::new();
         self.surfels = Default::default();
-        self.patches.refresh(&self.topology, &self.frame);
+        if let Some(patches) = self.patches.get_mut() {
+            patches.refresh(&self.topology, &self.frame);
+        }
+        if let Some(seam_maps) = self.seam_maps.get_mut() {
+            *seam_maps = self.frame.seam_maps(&self.topology);
+        }
         Ok(())
     }
 
@@ -214,6 +244,16 @@ fn built_once<'a, T>(cell: &'a OnceLock<T>, build: impl FnOnce() -> T, stopped: 
     if cancel::requested() {
         return stopped();
     }
+    cell.get_or_init(|| value)
+}
+
+/// The value of `cell`, built by `build` on its first use, outside the cell (as [`built_once`],
+/// for a value no stop request cuts short).
+fn kept_once<'a, T>(cell: &'a OnceLock<T>, build: impl FnOnce() -> T) -> &'a T {
+    if let Some(value) = cell.get() {
+        return value;
+    }
+    let value = build();
     cell.get_or_init(|| value)
 }
 

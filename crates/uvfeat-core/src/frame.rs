@@ -121,7 +121,7 @@ impl FaceMap {
     }
 }
 
-/// Positions, normals, triangle metrics and seam maps of one frame.
+/// Positions, normals and triangle metrics of one frame (its seam maps: [`Frame::seam_maps`]).
 #[derive(Debug, Clone)]
 pub struct Frame {
     /// (n_geometric) welded vertex positions.
@@ -132,8 +132,6 @@ pub struct Frame {
     pub distortion: Vec<Distortion>,
     /// (n_corners) smoothed metric `[E, F, G]` of each atlas corner (see [`corner_metrics`]).
     pub corner_metrics: Vec<[f64; 3]>,
-    /// (n_sides) transition map of each boundary side; `None` where nothing is across.
-    pub seam_maps: Vec<Option<SeamMap>>,
 }
 
 impl Frame {
@@ -148,7 +146,6 @@ impl Frame {
             normals: Vec::new(),
             distortion: vec![ZERO_DISTORTION; n_faces],
             corner_metrics: Vec::new(),
-            seam_maps: Vec::new(),
         };
         frame.refresh(topology, input_positions)?;
         Ok(frame)
@@ -172,10 +169,14 @@ impl Frame {
             .zip(&face_metrics)
             .for_each(|(distortion, metric)| *distortion = metric.map_or(ZERO_DISTORTION, Distortion::from_metric));
         self.corner_metrics = corner_metrics(topology, |f| face_metrics[f]);
-        let metrics = seam_corner_metrics(topology, &self.corner_metrics, &self.positions, &self.normals);
-        self.seam_maps =
-            seam_maps(topology, |face, corner| metrics[topology.corner_groups[face as usize][corner] as usize]);
         Ok(())
+    }
+
+    /// (n_sides) the transition map of each boundary side of `topology` in this frame; `None`
+    /// where nothing is across.
+    pub fn seam_maps(&self, topology: &Topology) -> Vec<Option<SeamMap>> {
+        let metrics = seam_corner_metrics(topology, &self.corner_metrics, &self.positions, &self.normals);
+        seam_maps(topology, |face, corner| metrics[topology.corner_groups[face as usize][corner] as usize])
     }
 
     /// The affine position and normal maps of `face` for this frame; `None` for a face outside

@@ -175,7 +175,7 @@ impl PyAtlas {
 
     /// The transition map of boundary side `side`: `(origin_from, origin_to, M)` or None.
     fn seam_map(&self, side: usize) -> Option<([f64; 2], [f64; 2], Matrix)> {
-        let map = (*self.inner.frame.seam_maps.get(side)?)?;
+        let map = (*self.inner.seam_maps().get(side)?)?;
         Some((map.origin_from.to_array(), map.origin_to.to_array(), matrix(map.m)))
     }
 

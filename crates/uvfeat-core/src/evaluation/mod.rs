@@ -45,10 +45,14 @@ impl Patterns {
     }
 }
 
-/// Builds the data `settings` reads (the coverage, bilinear buffers, surfels) before the parallel
+/// Builds the data `settings` reads (the coverage, patches, seam maps, bilinear buffers, surfels) before the parallel
 /// work starts, rather than in the first worker that needs it while the others wait on it idle.
 pub fn prepare(atlas: &Atlas, settings: &ComputeSettings) {
     atlas.coverage();
+    atlas.patches();
+    if !integration(atlas, settings).uses_surfels() {
+        atlas.seam_maps();
+    }
     if settings.lookup == Lookup::Bilinear {
         atlas.buffers();
     }

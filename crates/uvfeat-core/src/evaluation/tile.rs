@@ -164,7 +164,7 @@ fn evaluate_group(
     let sums = |lattice: &TileLattice, texel: &LatticeTexel, shift: f64| {
         lattice_statistics(kernel, lattice, texel, &stats_settings, EDGE_RADIUS as f32, sampler.with_normals, shift)
     };
-    let centre_texel = texel(&centre.texel_point(atlas.patches.origin));
+    let centre_texel = texel(&centre.texel_point(atlas.patches().origin));
     let mut marked = [false; DIRECTIONS];
     let (mut shift, mut probed) = (None, None);
     // The coverage check's probes first where the tile's previous group's ball reached past its

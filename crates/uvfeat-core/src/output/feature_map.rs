@@ -52,7 +52,7 @@ fn tiles(w: usize, side: usize) -> Vec<Vec<usize>> {
 fn ball_texels(atlas: &Atlas, settings: &ComputeSettings) -> f64 {
     let topology = &atlas.topology;
     let (surface, parametric) = atlas
-        .patches
+        .patches()
         .faces
         .par_iter()
         .enumerate()

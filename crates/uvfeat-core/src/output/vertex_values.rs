@@ -2,7 +2,7 @@
 //! the centre of its own neighbourhood, whose surfels' moments are summed (DESIGN.md §1.4.9), with
 //! no feature map in between (`Atlas.per_vertex` and `uvfeat.compute` with the surfels).
 
-use super::corners::VertexCorners;
+use super::corners::{Corner, VertexCorners};
 use crate::atlas::Atlas;
 use crate::cancel;
 use crate::error::{Result, UvfeatError};
@@ -78,18 +78,20 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                 .into(),
         });
     }
-    let corners = VertexCorners::new(atlas);
+    // Each vertex's first corner, read once (the topology's corner tables are scattered).
+    let first_corners: Vec<Option<Corner>> = {
+        let corners = VertexCorners::new(atlas);
+        (0..corners.n_vertices()).into_par_iter().map(|vertex| corners.first(vertex)).collect()
+    };
     let frame = &atlas.frame;
     atlas.surfels(settings.surface);
     // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
     // in turn share most of their surfels, which then come from the cache (the search is bound by
     // memory latency: in the file's order the armadillo took 1.5-1.9x as long).
-    let mut order: Vec<(u64, u32)> = (0..corners.n_vertices())
-        .into_par_iter()
-        .map(|vertex| {
-            let key = corners.first(vertex).map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution()));
-            (key, vertex as u32)
-        })
+    let mut order: Vec<(u64, u32)> = first_corners
+        .par_iter()
+        .enumerate()
+        .map(|(vertex, corner)| (corner.map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution())), vertex as u32))
         .collect();
     order.par_sort_unstable();
     let shared_sums = settings.surfel_sums();
@@ -103,7 +105,7 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                     return PixelResult::EMPTY;
                 }
                 let vertex = vertex as usize;
-                let Some(corner) = corners.first(vertex) else {
+                let Some(corner) = first_corners[vertex] else {
                     return PixelResult::EMPTY;
                 };
                 let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);

@@ -28,7 +28,7 @@ pub fn march(atlas: &Atlas, start: DVec2, chart: i32, target: DVec2, max_jumps: 
         };
         let side_index = atlas.coverage().border_side[texel] as usize;
         let side = &atlas.topology.sides[side_index];
-        let Some(map) = atlas.frame.seam_maps[side_index] else {
+        let Some(map) = atlas.seam_maps()[side_index] else {
             return Located::Border;
         };
         if jumps == max_jumps {
@@ -98,6 +98,6 @@ pub struct Crossing {
 pub fn cross_seam(atlas: &Atlas, uv: DVec2, chart: i32) -> Option<Crossing> {
     let texel = border_texel(atlas, uv, chart)?;
     let side = atlas.coverage().border_side[texel] as usize;
-    let map = atlas.frame.seam_maps[side]?;
+    let map = atlas.seam_maps()[side]?;
     Some(Crossing { chart: atlas.topology.sides[side].adjacent_chart, uv: map.apply(uv), m: map.m, side })
 }

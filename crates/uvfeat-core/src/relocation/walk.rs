@@ -196,7 +196,7 @@ pub fn walk_across(atlas: &Atlas, home: &Home, target: DVec2, max_jumps: u32, se
             }
             Stop::Lost => return Located::Missing,
             Stop::Boundary { side, point } => {
-                let Some(map) = atlas.frame.seam_maps[side as usize] else {
+                let Some(map) = atlas.seam_maps()[side as usize] else {
                     return Located::Border;
                 };
                 if jumps == max_jumps {

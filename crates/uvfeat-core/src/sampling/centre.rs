@@ -90,7 +90,7 @@ impl TexelPoint {
 pub fn texel_point(atlas: &Atlas, uv: DVec2) -> Option<TexelPoint> {
     let chart = atlas.chart_at(uv);
     let home = home(atlas, uv, chart)?;
-    let patch = &atlas.patches.faces[home.face as usize];
+    let patch = &atlas.patches().faces[home.face as usize];
     if patch.chart < 0 {
         return None;
     }
@@ -131,7 +131,7 @@ mod tests {
                     (Some(centre), Some(point)) => {
                         both += 1;
                         assert_eq!((centre.chart, centre.home), (point.chart, point.home));
-                        let position = point.position.as_dvec3() + atlas.patches.origin;
+                        let position = point.position.as_dvec3() + atlas.patches().origin;
                         assert!(position.distance(centre.position) < 1e-6, "{uv}");
                         assert!(point.normal.as_dvec3().distance(centre.normal) < 1e-6, "{uv}");
                     }

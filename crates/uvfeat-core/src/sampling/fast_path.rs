@@ -204,7 +204,7 @@ fn gather_batches(gathering: &Gathering, out: &mut Vec<Sample>) -> SampleCounts 
     let Gathering { atlas, centre, pattern, domain } = *gathering;
     let settings = domain.settings;
     let cell_area = unit_ellipse_area(centre, settings) / pattern.len() as f64;
-    let patches = &atlas.patches;
+    let patches = &atlas.patches();
     let interior = &atlas.coverage().interior_face;
     let r = settings.radius as f32;
     let kernel = Kernel {

@@ -289,7 +289,7 @@ impl<'a> LatticeBuilder<'a> {
         let mut crossing = Vec::new();
         for (k, (&(cell, _), &face)) in held.iter().zip(&faces).enumerate() {
             if let Some(&ahead) = faces.get(k + PREFETCH_AHEAD) {
-                prefetch(atlas.patches.faces.get(ahead as usize));
+                prefetch(atlas.patches().faces.get(ahead as usize));
             }
             let Some(face) = interior_of_chart(atlas, face, chart) else {
                 crossing.push(cell);
@@ -345,7 +345,7 @@ impl<'a> LatticeBuilder<'a> {
     fn keep(&mut self, cell: IVec2, located: Located) -> Option<Route> {
         let (atlas, settings) = (self.atlas, self.settings);
         let (w, line) = (self.place(cell), cell[self.lattice.axis] as u32);
-        let patches = &atlas.patches.faces;
+        let patches = &atlas.patches().faces;
         match located {
             Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches[face as usize].chart >= 0 => {
                 let patch = &patches[face as usize];
@@ -359,7 +359,7 @@ impl<'a> LatticeBuilder<'a> {
                 match settings.lookup.evaluate(atlas, face, uv, chart) {
                     Some(point) => {
                         let area = point.area_element * self.cell_uv_area * m_path.determinant().abs();
-                        let relative = (point.position - atlas.patches.origin).as_vec3();
+                        let relative = (point.position - atlas.patches().origin).as_vec3();
                         self.push(w, line, relative, point.normal.as_vec3(), area as f32);
                     }
                     None => self.lattice.lost.push(LostPoint { w, border: false }),

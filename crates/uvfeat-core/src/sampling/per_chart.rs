@@ -62,7 +62,7 @@ pub fn gather_per_chart(
             continue;
         };
         let side = atlas.coverage().border_side[texel] as usize;
-        if atlas.frame.seam_maps[side].is_none() {
+        if atlas.seam_maps()[side].is_none() {
             counts.border += 1;
             continue;
         }
@@ -73,7 +73,7 @@ pub fn gather_per_chart(
         }
     }
     for (chart, m) in marks.iter().flatten() {
-        let Some(map) = atlas.frame.seam_maps[m.side] else { continue };
+        let Some(map) = atlas.seam_maps()[m.side] else { continue };
         let carried = map.apply(centre.uv);
         let uv_scale = map.m.determinant().abs() * cell_area;
         for (pattern_index, offset) in offsets(centre, pattern, placement, reach, settings).enumerate() {

@@ -26,13 +26,13 @@ fn round_trip(atlas: &Atlas) -> RoundTrip {
     let mut landed = 0usize;
     for t in 0..atlas.coverage().chart.len() {
         let (chart, side) = (atlas.coverage().chart[t], atlas.coverage().border_side[t]);
-        if side < 0 || atlas.frame.seam_maps[side as usize].is_none() {
+        if side < 0 || atlas.seam_maps()[side as usize].is_none() {
             continue;
         }
         let x = atlas.texel_centre(t);
         let across = cross_seam(atlas, x, chart).expect("border texel with a seam");
         let reverse = atlas.topology.sides[across.side].reverse as usize;
-        let back = atlas.frame.seam_maps[reverse].expect("reverse side has a map").apply(across.uv);
+        let back = atlas.seam_maps()[reverse].expect("reverse side has a map").apply(across.uv);
         assert_eq!(atlas.topology.sides[reverse].chart, across.chart);
         out.crossed += 1;
         out.worst_uv_texels = out.worst_uv_texels.max(back.distance(x) * r);
@@ -63,7 +63,7 @@ fn split_plane_seams_round_trip_with_rotation_anisotropy_and_mirroring() {
         let atlas = atlas(&split_plane(16, mirrored), 512);
         assert_eq!(atlas.topology.n_charts, 2);
         assert_eq!(atlas.topology.diagnostics.mirrored_uv_faces > 0, mirrored);
-        let seam = atlas.frame.seam_maps.iter().flatten().next().expect("a seam").m;
+        let seam = atlas.seam_maps().iter().flatten().next().expect("a seam").m;
         assert_eq!(seam.determinant() < 0.0, mirrored, "det M sign");
         assert_round_trip(if mirrored { "mirrored plane" } else { "rotated plane" }, &atlas);
     }
