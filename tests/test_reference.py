@@ -40,9 +40,9 @@ def test_reference_object_answers_radii_options_and_vertex_subsets(sphere):
     uniform = ref.compute("mean_curvature", "10%", volume_weighting="uniform")["mean_curvature"]
     assert abs(np.median(uniform) - 8 / 9) < 0.03  # the paper's literal weighting: biased to 8H/9 (DESIGN.md §3.1)
     assert set(ref.last_timings) == {"connectivity_s", "estimation_s"}
-    # A mesh keeps its own, built once (the values at the vertices fill balls without surfels from it).
-    kept = sphere.reference
-    assert kept is sphere.reference and isinstance(kept, uvfeat.reference.Reference)
+    # A mesh's own, built once and kept (the values at the vertices fill balls without surfels from it).
+    kept = uvfeat.reference.Reference.of(sphere)
+    assert kept is uvfeat.reference.Reference.of(sphere) and isinstance(kept, uvfeat.reference.Reference)
     np.testing.assert_array_equal(kept.compute("mean_curvature", "10%", vertices=picked)["mean_curvature"], subset)
 
 

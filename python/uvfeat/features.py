@@ -340,7 +340,7 @@ def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summe
     """Where the ball of a vertex of a face held no surfel, or none beyond the inner exclusion
     (its atlas texels are longer than the ball there: a sliver chart, UVs squeezed into a few
     texels), the sums give NaN; ``values`` take the object-space reference's there instead, with
-    the same estimators (on the facets, with the mesh's kept :attr:`~uvfeat.Mesh.reference`). A
+    the same estimators (on the facets, with the mesh's kept :meth:`Reference.of`). A
     planar point's shape index is NaN by design, not a failed ball."""
     on_faces = np.zeros(mesh.n_vertices, dtype=bool)
     on_faces[mesh.faces.ravel()] = True
@@ -351,13 +351,13 @@ def _fill_empty_balls(mesh, names: list[str], radius: float, values: list, summe
     empty = np.flatnonzero(unsummed & on_faces)
     if empty.size == 0:
         return
-    from .reference import DEFAULT_OPTIONS as REFERENCE_OPTIONS
+    from .reference import DEFAULT_OPTIONS as REFERENCE_OPTIONS, Reference
 
     estimators = {name: opts[name] for name in REFERENCE_OPTIONS if name != "method"}
     with warnings.catch_warnings():
         # A ball with no other vertex stays NaN, as the reference says of its own calls.
         warnings.simplefilter("ignore", UserWarning)
-        filled = mesh.reference.compute(names, radius, vertices=empty, **estimators)
+        filled = Reference.of(mesh).compute(names, radius, vertices=empty, **estimators)
     for k, name in enumerate(names):
         values[k][empty] = filled[name]
 

@@ -9,16 +9,12 @@ style). Arrays handed out are read-only.
 from __future__ import annotations
 
 import functools
-from typing import TYPE_CHECKING
 import warnings
 
 import numpy as np
 
 from . import _core
 from .errors import InvalidMeshError, MeshWarning, UVError, UVWarning
-
-if TYPE_CHECKING:
-    from .reference import Reference
 
 
 def _readonly(array: np.ndarray) -> np.ndarray:
@@ -223,14 +219,6 @@ class Mesh:
         return float(np.linalg.norm(columns.max(axis=1) - columns.min(axis=1)))
 
     # -- pre-processing -----------------------------------------------------------------------
-    @functools.cached_property
-    def reference(self) -> "Reference":
-        """The mesh prepared for the object-space reference (welded, half-edge connectivity; UVs
-        not needed), built once on first use: :class:`uvfeat.reference.Reference`."""
-        from .reference import Reference
-
-        return Reference(self)
-
     @functools.cached_property
     def topology(self) -> _core.Topology:
         """Welded connectivity, charts and edge classes (DESIGN.md §1.2), built once on first use."""

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import time
 import warnings
+import weakref
 
 import numpy as np
 
@@ -48,6 +49,10 @@ def _vertex_indices(vertices, n_vertices: int) -> np.ndarray | None:
     return np.ascontiguousarray(array, dtype=np.int64)
 
 
+#: Each mesh's Reference (:meth:`Reference.of`).
+_KEPT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 class Reference:
     """A mesh prepared for the object-space reference: welded, with half-edge connectivity.
 
@@ -75,6 +80,14 @@ class Reference:
         self.connectivity_s = time.perf_counter() - started
         self.last_timings = {"connectivity_s": self.connectivity_s}
         self.last_samples: np.ndarray | None = None
+
+    @classmethod
+    def of(cls, mesh: Mesh) -> "Reference":
+        """The Reference of ``mesh``, built on the first call and kept while the mesh lives
+        (meshes never change): later calls on the same mesh skip the welding and connectivity."""
+        if mesh not in _KEPT:
+            _KEPT[mesh] = cls(mesh)
+        return _KEPT[mesh]
 
     def compute(self, features, radius, *, vertices=None, **options) -> dict[str, np.ndarray]:
         """Per-vertex reference values.

@@ -249,7 +249,7 @@ fn built_once<'a, T>(cell: &'a OnceLock<T>, build: impl FnOnce() -> T, stopped: 
 
 /// The value of `cell`, built by `build` on its first use, outside the cell (as [`built_once`],
 /// for a value no stop request cuts short).
-fn kept_once<'a, T>(cell: &'a OnceLock<T>, build: impl FnOnce() -> T) -> &'a T {
+fn kept_once<T>(cell: &OnceLock<T>, build: impl FnOnce() -> T) -> &T {
     if let Some(value) = cell.get() {
         return value;
     }
