@@ -134,7 +134,7 @@ impl Atlas {
     /// `quadrature = "surfels"`. A build stopped part way ([`cancel`]) is not kept: the call gives
     /// an empty pyramid, and the next builds it whole.
     pub fn surfels(&self, surface: Surface) -> &Surfels {
-        static NONE: Surfels = Surfels { levels: Vec::new() };
+        static NONE: Surfels = Surfels::empty();
         let cell = &self.surfels[usize::from(surface == Surface::Smooth)];
         // Asked per point: once stopped, no point starts a build of its own.
         if cell.get().is_none() && cancel::requested() {

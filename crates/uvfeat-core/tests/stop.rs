@@ -18,12 +18,12 @@ fn a_stopped_first_use_keeps_nothing_and_the_next_builds_it_whole() {
         Atlas::new(topology, &mesh.positions, &AtlasOptions { coverage_on_first_use: true, ..options }).unwrap();
 
     cancel::request();
-    let stopped = (deferred.coverage().chart.clone(), deferred.surfels(Surface::Smooth).levels.len());
+    let stopped = (deferred.coverage().chart.clone(), deferred.surfels(Surface::Smooth).n_levels());
     cancel::clear();
     assert!(stopped.0.iter().all(|&c| c < 0), "a stopped rasterisation shows no chart");
     assert_eq!(stopped.1, 0, "a stopped pyramid has no level");
 
     assert_eq!(deferred.coverage().chart, eager.coverage().chart);
     assert_eq!(deferred.coverage().face, eager.coverage().face);
-    assert_eq!(deferred.surfels(Surface::Smooth).levels.len(), eager.surfels(Surface::Smooth).levels.len());
+    assert_eq!(deferred.surfels(Surface::Smooth).n_levels(), eager.surfels(Surface::Smooth).n_levels());
 }

@@ -57,7 +57,11 @@ pub fn prepare(atlas: &Atlas, settings: &ComputeSettings) {
         atlas.buffers();
     }
     if integration(atlas, settings).uses_surfels() {
-        atlas.surfels(settings.surface);
+        // Every level: a texel's ball may ask for any.
+        let surfels = atlas.surfels(settings.surface);
+        if let Some(coarsest) = surfels.n_levels().checked_sub(1) {
+            surfels.level(coarsest);
+        }
     }
 }
 

@@ -18,7 +18,7 @@ use super::{NeighbourhoodStats, StatsSettings, WeightedSums};
 use crate::atlas::Atlas;
 use crate::distortion::Distortion;
 use crate::raster::{Surface, SurfelLevel, SurfelPoint};
-use crate::sampling::{moment_ramp_area, moment_ramp_centre, SampleCounts, SurfelBall};
+use crate::sampling::{moment_ramp_area, moment_ramp_centre, SampleCounts, SurfelBall, SurfelCount};
 use glam::{DVec2, DVec3};
 
 /// Where a neighbourhood is centred: a surface point, its unit normal, where it lies in the atlas
@@ -76,6 +76,9 @@ pub struct SurfelSumSettings {
     pub with_normals: bool,
     /// Surfels a plane's ball is summed over ([`SurfelBall::new`]).
     pub surfels_per_ball: f64,
+    /// The coarsest level of the pyramid a ball is summed at (`usize::MAX`: any; the values at the
+    /// vertices build only those their balls need, `sampling::levels_to_build`).
+    pub coarsest_level: usize,
 }
 
 /// The sums of the ball's connected part around `centre`, with their sample counts (`valid`:
@@ -92,8 +95,8 @@ pub fn surfel_sums(
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
     let at = (centre.uv, centre.chart);
-    let Some(search) = SurfelBall::new(atlas, surfels, at, texels, r, settings.surfels_per_ball, moment_ramp_centre)
-    else {
+    let count = SurfelCount { per_ball: settings.surfels_per_ball, coarsest: settings.coarsest_level };
+    let Some(search) = SurfelBall::new(atlas, surfels, at, texels, r, count, moment_ramp_centre) else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
     let (inner, outer) = search.ramp;
@@ -107,7 +110,7 @@ pub fn surfel_sums(
         r,
         rho_min: settings.stats.rho_min,
     };
-    let level = &surfels.levels[search.level];
+    let level = surfels.level(search.level);
     if settings.with_normals {
         search.search(level, centre.position, |s, distance| ball.add::<true>(&mut sums, level, s, distance));
     } else {

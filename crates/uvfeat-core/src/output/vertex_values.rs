@@ -7,9 +7,10 @@ use crate::atlas::Atlas;
 use crate::cancel;
 use crate::error::{Result, UvfeatError};
 use crate::evaluation::{integration, Integration, PixelResult};
-use crate::features::{surfel_sums, SurfelCentre};
+use crate::features::{surfel_sums, SurfelCentre, SurfelSumSettings};
 use crate::raster::morton;
-use crate::sampling::SampleCounts;
+use crate::raster::Surfels;
+use crate::sampling::{levels_to_build, SampleCounts, SurfelBall};
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
 
@@ -78,48 +79,59 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                 .into(),
         });
     }
-    // Each vertex's first corner, read once (the topology's corner tables are scattered).
-    let first_corners: Vec<Option<Corner>> = {
-        let corners = VertexCorners::new(atlas);
-        (0..corners.n_vertices()).into_par_iter().map(|vertex| corners.first(vertex)).collect()
-    };
     let frame = &atlas.frame;
-    atlas.surfels(settings.surface);
+    let surfels = atlas.surfels(settings.surface);
     // Vertices in the order of their texels along a Z curve, so that the vertices one thread takes
-    // in turn share most of their surfels, which then come from the cache (the search is bound by
-    // memory latency: in the file's order the armadillo took 1.5-1.9x as long).
-    let mut order: Vec<(u64, u32)> = first_corners
+    // in turn share most of their surfels, which then come from the cache (in the file's order the
+    // armadillo took 1.5-1.9x as long); each with its first corner, read once (the topology's
+    // corner tables are scattered).
+    let mut order: Vec<(u64, u32, Option<Corner>)> = {
+        let corners = VertexCorners::new(atlas);
+        (0..corners.n_vertices())
+            .into_par_iter()
+            .map(|vertex| {
+                let corner = corners.first(vertex);
+                (corner.map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution())), vertex as u32, corner)
+            })
+            .collect()
+    };
+    order.par_sort_unstable_by_key(|&(key, vertex, _)| (key, vertex));
+    let centres: Vec<Option<SurfelCentre>> = order
         .par_iter()
-        .enumerate()
-        .map(|(vertex, corner)| (corner.map_or(u64::MAX, |c| z_order(c.uv, atlas.resolution())), vertex as u32))
+        .map(|&(_, vertex, corner)| {
+            let corner = corner?;
+            let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
+            let (position, normal) = (frame.positions[vertex as usize], frame.normals[vertex as usize]);
+            Some(SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution()))
+        })
         .collect();
-    order.par_sort_unstable();
-    let shared_sums = settings.surfel_sums();
+    let radius_of = |vertex: u32| radii.map_or(settings.radius, |radii| radii[vertex as usize]);
+    // The coarser levels are built only as far as the balls need them (`levels_to_build`).
+    let asked =
+        order.iter().zip(&centres).filter_map(|(&(_, vertex, _), centre)| Some((centre.as_ref()?, radius_of(vertex))));
+    let shared_sums =
+        SurfelSumSettings { coarsest_level: built_levels(surfels, asked, settings.samples), ..settings.surfel_sums() };
     let sorted: Vec<PixelResult> = order
         .par_iter()
+        .zip(&centres)
         // One copy of the settings per job, its radius set per vertex where the vertices have their own.
         .map_init(
             || settings.clone(),
-            |own, &(_, vertex)| {
+            |own, (&(_, vertex, _), centre)| {
                 if cancel::requested() {
                     return PixelResult::EMPTY;
                 }
-                let vertex = vertex as usize;
-                let Some(corner) = first_corners[vertex] else {
+                let Some(centre) = centre else {
                     return PixelResult::EMPTY;
                 };
-                let distortion = frame.sampling_distortion(&atlas.topology, corner.face, corner.uv);
-                let (position, normal) = (frame.positions[vertex], frame.normals[vertex]);
-                let centre =
-                    SurfelCentre::new(position, normal, corner.uv, corner.chart, &distortion, atlas.resolution());
                 let sums = match radii {
-                    Some(radii) => {
-                        own.radius = radii[vertex];
-                        own.surfel_sums()
+                    Some(_) => {
+                        own.radius = radius_of(vertex);
+                        SurfelSumSettings { coarsest_level: shared_sums.coarsest_level, ..own.surfel_sums() }
                     }
                     None => shared_sums,
                 };
-                let (stats, counts) = surfel_sums(atlas, &centre, &sums);
+                let (stats, counts) = surfel_sums(atlas, centre, &sums);
                 if counts.valid == 0 {
                     return PixelResult::EMPTY;
                 }
@@ -129,7 +141,7 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
         .collect();
     cancel::check()?;
     let mut results = vec![PixelResult::EMPTY; sorted.len()];
-    for (&(_, vertex), result) in order.iter().zip(sorted) {
+    for (&(_, vertex, _), result) in order.iter().zip(sorted) {
         results[vertex as usize] = result;
     }
     let ids = &atlas.topology.vertex_ids;
@@ -139,6 +151,24 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
         .map(|f| ids.iter().map(|&g| results[g as usize].values[f.index()]).collect())
         .collect();
     Ok(VertexValues { values, counts: ids.iter().map(|&g| results[g as usize].counts).collect() })
+}
+
+/// The coarsest level of `surfels` that balls around the `(centre, radius)` of `asked` over about
+/// `samples` surfels each are summed at, built here before their parallel loop: the finest whose
+/// balls that ask for coarser ones add little work ([`levels_to_build`]).
+fn built_levels<'a>(surfels: &Surfels, asked: impl Iterator<Item = (&'a SurfelCentre, f64)>, samples: usize) -> usize {
+    // A pyramid stopped before its finest level has none (the caller's check reports the stop).
+    if surfels.n_levels() == 0 {
+        return 0;
+    }
+    let mut counts = vec![0; surfels.n_levels()];
+    for (centre, radius) in asked {
+        let texels = (centre.texel_length, centre.texel_side);
+        counts[SurfelBall::asked_level(surfels.n_levels(), texels, radius, samples as f64)] += 1;
+    }
+    let coarsest = levels_to_build(&counts);
+    surfels.level(coarsest);
+    coarsest
 }
 
 /// Position of texel-space point `uv` along a Z (Morton) curve over a `resolution`² grid.

@@ -18,6 +18,7 @@ use crate::frame::Frame;
 use crate::mesh::{find, union, Topology};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use std::sync::OnceLock;
 
 /// Which surface the surfels (and their centres) lie on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -60,8 +61,8 @@ pub struct SurfelLevel {
     pub normal: Vec<DVec3>,
     /// A mesh border (or non-manifold edge) passes through the surfel.
     pub on_border: Vec<bool>,
-    /// The surfel of the next level up that holds each surfel (empty at the top).
-    pub parent: Vec<u32>,
+    /// Coarser levels only: the surfel of this level that holds each surfel of the level below.
+    pub finer_parent: Vec<u32>,
     /// Adjacent surfels of `s`: `adjacent[adjacent_first[s]..adjacent_first[s + 1]]`.
     adjacent_first: Vec<u32>,
     adjacent: Vec<u32>,
@@ -255,8 +256,8 @@ impl SurfelLevel {
     }
 
     /// The next level up: in each 2 x 2 block of texels, the surfels of one chart joined by
-    /// adjacency form one surfel; sets `self.parent`.
-    fn coarser(&mut self) -> Self {
+    /// adjacency form one surfel.
+    fn coarser(&self) -> Self {
         let width = self.width.div_ceil(2);
         let up = |t: u32| {
             let (i, j) = (t as usize % self.width, t as usize / self.width);
@@ -290,14 +291,14 @@ impl SurfelLevel {
             })
             .collect();
         let mut next = Self::summed(width, &fragments, &owner);
-        self.parent = vec![0; self.len()];
+        let mut parent = vec![0; self.len()];
         for (&(.., s), &o) in order.iter().zip(&owner) {
-            self.parent[s as usize] = o;
+            parent[s as usize] = o;
             next.on_border[o as usize] |= self.on_border[s as usize];
         }
         // Each link once (adjacency lists hold both directions) and only between parents: a
         // quarter of the pairs to sort (level 0 -> 1 of the 100K-face dragon at 512²: 41-49 ms before).
-        let parent = &self.parent;
+        let parent = &parent;
         let pairs = (0..self.len() as u32)
             .into_par_iter()
             .flat_map_iter(|s| self.neighbours(s).iter().filter(move |&&t| s < t).map(move |&t| (s, t)))
@@ -305,6 +306,7 @@ impl SurfelLevel {
             .filter(|(a, b)| a != b)
             .collect();
         next.set_adjacency(pairs);
+        next.finer_parent = parent.clone();
         next
     }
 }
@@ -333,12 +335,20 @@ fn z_order(sums: &[Fragment], width: usize) -> Vec<u32> {
 /// The surfel pyramid of one frame; level 0 has the atlas's resolution.
 #[derive(Debug, Clone, Default)]
 pub struct Surfels {
-    /// Finest first; level `k` has `ceil(W / 2^k)` texels per side.
-    pub levels: Vec<SurfelLevel>,
+    /// Finest first; level `k` has `ceil(W / 2^k)` texels per side. The finest is built with the
+    /// pyramid, each coarser level on its first use ([`Surfels::level`]): a ball's level is fitted
+    /// to the radius, and the values at the vertices of most meshes read the finest alone (the
+    /// coarser levels were 16-21 ms of a 512² pyramid's 60-77 ms).
+    levels: Vec<OnceLock<SurfelLevel>>,
 }
 
 impl Surfels {
-    /// Clips every face of the frame to the texels of a `width`² grid and builds the pyramid,
+    /// A pyramid without levels (a build cut short by a stop request).
+    pub const fn empty() -> Self {
+        Self { levels: Vec::new() }
+    }
+
+    /// Clips every face of the frame to the texels of a `width`² grid and builds the finest level,
     /// with centroids on `surface`.
     pub fn build(topology: &Topology, frame: &Frame, width: usize, surface: Surface) -> Self {
         let smooth = surface == Surface::Smooth;
@@ -354,18 +364,35 @@ impl Surfels {
         let Some(finest) = SurfelLevel::finest(width, sums, &seams, &borders) else {
             return Self::default();
         };
-        let mut levels = vec![finest];
-        while let Some(last) = levels.last_mut().filter(|l| l.width > SMALLEST_LEVEL && !cancel::requested()) {
-            let next = last.coarser();
-            levels.push(next);
+        let mut widths = vec![width];
+        while let Some(&last) = widths.last().filter(|&&w| w > SMALLEST_LEVEL) {
+            widths.push(last.div_ceil(2));
         }
+        let levels = widths.iter().map(|_| OnceLock::new()).collect::<Vec<_>>();
+        let _ = levels[0].set(finest);
         Self { levels }
+    }
+
+    /// Number of levels (the coarsest has at most 4 texels per side).
+    pub fn n_levels(&self) -> usize {
+        self.levels.len()
+    }
+
+    /// Level `k` (`k < n_levels()`), made from the level below on its first use (outside the
+    /// cell, as `Atlas`'s other parts: two threads asking at once may both make it; one is kept).
+    pub fn level(&self, k: usize) -> &SurfelLevel {
+        let cell = &self.levels[k];
+        if let Some(level) = cell.get() {
+            return level;
+        }
+        let built = self.level(k - 1).coarser();
+        cell.get_or_init(|| built)
     }
 
     /// The surfel of `level` that holds the finest surfel `s`.
     pub fn ancestor(&self, mut s: u32, level: usize) -> u32 {
-        for l in &self.levels[..level] {
-            s = l.parent[s as usize];
+        for k in 1..=level {
+            s = self.level(k).finer_parent[s as usize];
         }
         s
     }

@@ -37,4 +37,4 @@ pub use sample::{moment_ramp_area, moment_ramp_centre, ramp_centre, Sample, Samp
 pub use secant_metric::secant_distortion;
 pub use settings::{Criterion, Overlaps, Quadrature, SamplerSettings, SamplingPath};
 pub use surfel_grid::surfel_grid_width;
-pub use surfels::{gather_surfels, surfel_centre, SurfelBall};
+pub use surfels::{gather_surfels, levels_to_build, surfel_centre, SurfelBall, SurfelCount};

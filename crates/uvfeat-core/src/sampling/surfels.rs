@@ -88,12 +88,12 @@ pub fn gather_surfels(
         (centre.uv, centre.chart),
         texels,
         settings.radius,
-        settings.surfels_per_ball,
+        SurfelCount::per_ball(settings.surfels_per_ball),
         ramp_centre,
     ) else {
         return counts;
     };
-    let level = &surfels.levels[ball.level];
+    let level = surfels.level(ball.level);
     let (inner, outer) = ball.ramp;
     let r = settings.radius;
     ball.search(level, centre.position, |s, distance| {
@@ -121,6 +121,38 @@ pub fn gather_surfels(
     counts
 }
 
+/// How many surfels a ball sums.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfelCount {
+    /// About this many in a plane's ball.
+    pub per_ball: f64,
+    /// At a level no coarser than this one (more surfels then): the levels built for the balls of
+    /// a call ([`levels_to_build`]).
+    pub coarsest: usize,
+}
+
+impl SurfelCount {
+    /// About `per_ball` surfels, at any level.
+    pub fn per_ball(per_ball: f64) -> Self {
+        Self { per_ball, coarsest: usize::MAX }
+    }
+}
+
+/// A ball clamped to a finer level than it asks for sums 4 times the surfels per level; the levels
+/// a call builds leave at most this share of its balls' work to such balls (a coarser level of a
+/// 512² pyramid costs what about a quarter of a scan's balls do).
+const CLAMPED_WORK: f64 = 0.05;
+
+/// The coarsest level to build for balls that ask for levels with `asked[k]` of them at level `k`:
+/// the finest whose clamped balls add at most [`CLAMPED_WORK`] of all the balls' work.
+pub fn levels_to_build(asked: &[usize]) -> usize {
+    let balls: usize = asked.iter().sum();
+    let extra = |built: usize| -> f64 {
+        asked.iter().enumerate().skip(built + 1).map(|(k, &n)| n as f64 * (4f64.powi((k - built) as i32) - 1.0)).sum()
+    };
+    (0..asked.len()).find(|&built| extra(built) <= CLAMPED_WORK * balls as f64).unwrap_or(asked.len().saturating_sub(1))
+}
+
 /// Where a ball's surfels are summed: the level, the surfel of it holding the centre, and the
 /// ramp across the ball's edge.
 #[derive(Debug, Clone, Copy)]
@@ -139,8 +171,8 @@ pub struct SurfelBall {
 impl SurfelBall {
     /// The ball of `radius` around the point `uv` of `chart`, where a finest surfel is up to
     /// `texels.0` long and `texels.1` on the side of its area (`sigma_1 / W`, `sqrt(sigma_1
-    /// sigma_2) / W`), summed at the level that puts about `per_ball` surfels in a plane's ball
-    /// (fewer only at the finest level). `None` where neither the point's texel nor its eight
+    /// sigma_2) / W`), summed at the level that puts about `count.per_ball` surfels in a plane's
+    /// ball (fewer only at the finest level, more where `count.coarsest` is finer). `None` where neither the point's texel nor its eight
     /// neighbours hold a surfel of its chart (the centre of a gutter texel lies just off its
     /// chart). `centring` places the ramp (its width in units of `r` to its centre):
     /// [`ramp_centre`] where the samples' areas are read (a plane's disk weighs exactly `pi r^2`),
@@ -151,16 +183,22 @@ impl SurfelBall {
         (uv, chart): (DVec2, i32),
         texels: (f64, f64),
         radius: f64,
-        per_ball: f64,
+        count: SurfelCount,
         centring: fn(f64) -> f64,
     ) -> Option<Self> {
-        let finest = surfels.levels.first()?;
+        let finest = (surfels.n_levels() > 0).then(|| surfels.level(0))?;
         let texel = atlas.nearest_texel(uv, |t| finest.at(t, chart).is_some())?;
-        let level = surfel_level(surfels.levels.len(), level_side(texels.0, texels.1), radius, per_ball);
+        let level = Self::asked_level(surfels.n_levels(), texels, radius, count.per_ball).min(count.coarsest);
         let start = surfels.ancestor(finest.at(texel, chart)?, level);
         let width = (texels.1 * (1u64 << level) as f64).min(0.5 * radius);
         let edge = radius * centring(width / radius);
         Some(Self { level, start, ramp: (edge - width / 2.0, edge + width / 2.0), radius })
+    }
+
+    /// The level of a pyramid of `n_levels` that a ball of `radius` around a point whose finest
+    /// surfel is `texels` (as [`SurfelBall::new`]) sums about `per_ball` surfels at.
+    pub fn asked_level(n_levels: usize, texels: (f64, f64), radius: f64, per_ball: f64) -> usize {
+        surfel_level(n_levels, level_side(texels.0, texels.1), radius, per_ball)
     }
 
     /// Runs `visit(s, distance)` on every surfel `s` of `level` (this ball's) whose centroid is
@@ -206,6 +244,18 @@ impl SurfelBall {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn levels_are_built_as_far_as_the_balls_clamped_below_them_cost_a_twentieth_more() {
+        // One ball in a thousand asking two levels up sums 16x at the finest: kept there.
+        assert_eq!(levels_to_build(&[1000, 0, 1]), 0);
+        // One in ten: 15 extra balls' work per such ball at level 0, 3 at level 1; level 2 built.
+        assert_eq!(levels_to_build(&[100, 0, 10]), 2);
+        // A few asking one level up (3 extra each): 15 of 1,000 fit, 20 do not.
+        assert_eq!(levels_to_build(&[985, 15]), 0);
+        assert_eq!(levels_to_build(&[980, 20]), 1);
+        assert_eq!(levels_to_build(&[]), 0);
+    }
 
     #[test]
     fn a_texel_counts_as_the_square_of_its_area_up_to_a_stretch_of_two() {

@@ -217,6 +217,7 @@ impl ComputeSettings {
             surface: self.surface,
             with_normals: self.sampler().with_normals,
             surfels_per_ball: self.samples as f64,
+            coarsest_level: usize::MAX,
         }
     }
 

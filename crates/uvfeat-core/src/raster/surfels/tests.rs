@@ -18,11 +18,26 @@ fn torus_surfels(width: usize) -> (f64, Surfels) {
     (area, Surfels::build(&topology, &frame, width, Surface::Facets))
 }
 
+/// Every level of `surfels`, finest first (each built on its first use).
+fn every_level(surfels: &Surfels) -> impl Iterator<Item = &SurfelLevel> {
+    (0..surfels.n_levels()).map(|k| surfels.level(k))
+}
+
+#[test]
+fn coarser_levels_are_built_on_first_use_and_the_coarsest_from_all_below() {
+    let (_, surfels) = torus_surfels(64);
+    assert!(surfels.levels[0].get().is_some() && surfels.levels[1..].iter().all(|level| level.get().is_none()));
+    assert_eq!(surfels.ancestor(0, 0), 0);
+    let top = surfels.ancestor(0, 4);
+    assert!(surfels.levels.iter().all(|level| level.get().is_some()));
+    assert_eq!(surfels.level(4).chart[top as usize], surfels.level(0).chart[0]);
+}
+
 #[test]
 fn surfels_partition_the_surface_at_every_level() {
     let (area, surfels) = torus_surfels(64);
-    assert_eq!(surfels.levels.len(), 5); // 64, 32, 16, 8, 4
-    for level in &surfels.levels {
+    assert_eq!(surfels.n_levels(), 5); // 64, 32, 16, 8, 4
+    for level in every_level(&surfels) {
         let total: f64 = level.point.iter().map(|p| p.area).sum();
         assert!((total / area - 1.0).abs() < 1e-9, "level {}: {total} vs {area}", level.width);
     }
@@ -31,10 +46,10 @@ fn surfels_partition_the_surface_at_every_level() {
 #[test]
 fn coarse_surfels_keep_their_pieces_spread() {
     let (_, surfels) = torus_surfels(64);
-    for (fine, coarse) in surfels.levels.iter().zip(&surfels.levels[1..]) {
+    for (fine, coarse) in every_level(&surfels).zip(every_level(&surfels).skip(1)) {
         let mut spread = vec![0.0; coarse.len()];
         for (s, p) in fine.point.iter().enumerate() {
-            let parent = fine.parent[s] as usize;
+            let parent = coarse.finer_parent[s] as usize;
             spread[parent] += p.spread + p.area * (p.position - coarse.point[parent].position).length_squared();
         }
         for (p, s) in coarse.point.iter().zip(spread) {
@@ -43,7 +58,7 @@ fn coarse_surfels_keep_their_pieces_spread() {
     }
     // A disk has the least spread for its area, and the finest surfels (near rectangles of a
     // texel, up to 5:1 on this torus) hold at most a few times a disk's.
-    for p in &surfels.levels[0].point {
+    for p in &surfels.level(0).point {
         let disk = p.area * p.area / std::f64::consts::TAU;
         assert!(p.spread >= disk * (1.0 - 1e-9) && p.spread < 6.0 * disk, "{p:?}");
     }
@@ -54,7 +69,7 @@ fn the_seam_of_a_torus_chart_links_both_sides() {
     // The lat-long torus is one chart whose u = 0 and u = 1 edges (and v = 0, v = 1) are seams:
     // surfels in the first column link to surfels in the last.
     let (_, surfels) = torus_surfels(64);
-    let level = &surfels.levels[0];
+    let level = surfels.level(0);
     let row: Vec<i64> = (0..64).filter(|&i| level.at(20 * 64 + i as usize, 0).is_some()).collect();
     let (left, right) = (row[0], row[row.len() - 1]);
     assert!(right - left > 56, "{row:?}");
@@ -67,18 +82,18 @@ fn the_seam_of_a_torus_chart_links_both_sides() {
 #[test]
 fn coarse_surfels_are_connected_pieces_with_their_parents_neighbours() {
     let (_, surfels) = torus_surfels(64);
-    for (fine, coarse) in surfels.levels.iter().zip(&surfels.levels[1..]) {
+    for (fine, coarse) in every_level(&surfels).zip(every_level(&surfels).skip(1)) {
         for s in 0..fine.len() as u32 {
-            let p = fine.parent[s as usize];
+            let p = coarse.finer_parent[s as usize];
             assert_eq!(coarse.chart[p as usize], fine.chart[s as usize]);
             for &t in fine.neighbours(s) {
-                let q = fine.parent[t as usize];
+                let q = coarse.finer_parent[t as usize];
                 assert!(p == q || coarse.neighbours(p).contains(&q));
             }
         }
     }
     // One chart, no slit: one surfel per covered coarse texel.
-    let top = surfels.levels.last().unwrap();
+    let top = surfels.level(surfels.n_levels() - 1);
     let mut texels = top.texel.clone();
     texels.dedup();
     assert_eq!(texels.len(), top.len());
@@ -87,7 +102,7 @@ fn coarse_surfels_are_connected_pieces_with_their_parents_neighbours() {
 #[test]
 fn every_level_is_in_z_order_and_the_finest_finds_each_surfel_by_texel() {
     let (_, surfels) = torus_surfels(64);
-    for level in &surfels.levels {
+    for level in every_level(&surfels) {
         let key = |s: usize| {
             let (i, j) = level.texel(s as u32);
             (morton(i as usize, j as usize), level.chart[s])
@@ -95,7 +110,7 @@ fn every_level_is_in_z_order_and_the_finest_finds_each_surfel_by_texel() {
         // Two pieces of one chart in one coarse texel share a key (they stay apart when not adjacent).
         assert!((1..level.len()).all(|s| key(s - 1) <= key(s)), "level {} out of Z order", level.width);
     }
-    let finest = &surfels.levels[0];
+    let finest = surfels.level(0);
     assert!((1..finest.len()).all(|s| finest.texel[s - 1] != finest.texel[s] || finest.chart[s - 1] < finest.chart[s]));
     for s in 0..finest.len() {
         let texel = finest.texel[s] as usize;
