@@ -4,7 +4,7 @@
 
 use crate::cancel;
 use crate::frame::Frame;
-use crate::mesh::{SideKind, Topology};
+use crate::mesh::{EdgeLink, SideKind, Topology};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -19,12 +19,20 @@ pub(super) struct Fragment {
     pub normal: DVec3,
     /// `sum dA |q - c|^2` about the centroid `c`.
     pub spread: f64,
+    /// [`JOINS_LEFT`] and [`JOINS_BELOW`]: a face has parts both here and in the texel to the left
+    /// (below) of this one, so the surface crosses their common side.
+    pub joins: u8,
 }
+
+/// [`Fragment::joins`]: joined with the texel to the left.
+pub(super) const JOINS_LEFT: u8 = 1;
+/// [`Fragment::joins`]: joined with the texel below.
+pub(super) const JOINS_BELOW: u8 = 2;
 
 impl Fragment {
     /// Nothing of `chart` in `texel` yet.
     pub fn empty(texel: u32, chart: i32) -> Self {
-        Self { texel, chart, area: 0.0, moment: DVec3::ZERO, normal: DVec3::ZERO, spread: 0.0 }
+        Self { texel, chart, area: 0.0, moment: DVec3::ZERO, normal: DVec3::ZERO, spread: 0.0, joins: 0 }
     }
 
     /// Area centroid (the origin without area).
@@ -39,11 +47,12 @@ impl Fragment {
     /// Adds `other`'s surface, its spread by the parallel-axis theorem (about each part's own
     /// centroid, so that far from the origin nothing cancels).
     pub fn absorb(&mut self, other: &Fragment) {
+        self.joins |= other.joins;
         if !(other.area > 0.0) {
             return;
         }
         if !(self.area > 0.0) {
-            *self = Fragment { texel: self.texel, chart: self.chart, ..*other };
+            *self = Fragment { texel: self.texel, chart: self.chart, joins: self.joins, ..*other };
             return;
         }
         let (a, b) = (self.centroid(), other.centroid());
@@ -147,7 +156,12 @@ fn face_rows(topology: &Topology, f: usize, width: usize) -> Option<(usize, usiz
     (hi >= 0.0 && lo < width as f64).then(|| (lo.floor().max(0.0) as usize, (hi.floor() as usize).min(width - 1)))
 }
 
-/// Appends the parts of face `f` in each texel of rows `rows` of a `width`² grid to `out`.
+/// Appends the parts of face `f` in each texel of rows `rows` of a `width`² grid to `out`, each
+/// marked with the texels to its left and below that the face has parts in too
+/// ([`Fragment::joins`]). Texels are joined only through a face in both: a face is convex, so its
+/// parts in two side-adjacent texels meet across their common side, where two pieces of a chart
+/// that only come near each other in UV (across a notch of the chart narrower than a texel) do
+/// not.
 fn face_fragments(
     topology: &Topology,
     frame: &Frame,
@@ -165,10 +179,16 @@ fn face_fragments(
     let (lo, hi) = (corners[0].min(corners[1]).min(corners[2]), corners[0].max(corners[1]).max(corners[2]));
     let (i0, j0) = ((lo.x.floor().max(0.0)) as usize, (lo.y.floor().max(0.0)) as usize);
     let (i1, j1) = ((hi.x.floor() as usize).min(width - 1), (hi.y.floor() as usize).min(width - 1));
-    let (j0, j1) = (j0.max(*rows.start()), j1.min(*rows.end()));
+    // The row below the band too, when the face reaches it, for the joins of the band's first row
+    // (no part of it is kept here).
+    let below = usize::from(j0 < *rows.start());
+    let (j0, j1) = (j0.max(*rows.start()) - below, j1.min(*rows.end()));
     let triangle = Polygon::from(&corners);
+    // The columns holding parts of the face in the row before (contiguous: the face is convex).
+    let mut previous: Option<(usize, usize)> = None;
     for j in j0..=j1 {
         let row = triangle.clip(1, j as f64, j as f64 + 1.0);
+        let mut held: Option<(usize, usize)> = None;
         for i in i0..=i1 {
             let piece = row.clip(0, i as f64, i as f64 + 1.0);
             let (uv_area, centroid) = piece.area_centroid();
@@ -177,6 +197,13 @@ fn face_fragments(
             if !(area > 0.0) {
                 continue;
             }
+            let first = held.map_or(i, |(first, _)| first);
+            held = Some((first, i));
+            if j < *rows.start() {
+                continue;
+            }
+            let joins = if i > first { JOINS_LEFT } else { 0 }
+                | if previous.is_some_and(|(a, b)| a <= i && i <= b) { JOINS_BELOW } else { 0 };
             let uv = centroid / w;
             let position = if smooth { map.smooth_position(uv) } else { map.position(uv) };
             // The face's map is affine: texel offsets from the centroid map to 3D through J / W.
@@ -191,14 +218,17 @@ fn face_fragments(
                 moment: position * area,
                 normal: map.normal(uv) * area,
                 spread: spread.max(0.0),
+                joins,
             });
         }
+        previous = held;
     }
 }
 
 /// Points sampled every half texel along the chart boundaries: seam points paired with the same
-/// point seen from the face across, and points of mesh borders; each nudged into its face so that
-/// it falls in a texel that holds part of the face.
+/// point seen from the face across (and so the points of interior edges along texel sides), and
+/// points of mesh borders; each nudged into its face so that it falls in a texel that holds part
+/// of the face.
 pub(super) fn boundary_points(topology: &Topology, width: usize) -> (Vec<SeamPoints>, Vec<(DVec2, i32)>) {
     let w = width as f64;
     let inward = |face: u32, uv: DVec2| {
@@ -226,7 +256,32 @@ pub(super) fn boundary_points(topology: &Topology, width: usize) -> (Vec<SeamPoi
                 ((a, side.chart), (b, other.chart))
             })
         })
-        .collect();
+        .collect::<Vec<SeamPoints>>();
+    // An interior edge along a texel side: its two faces have parts on either side of it and none
+    // across (`face_fragments` joins no texels for them), so it is walked as a seam is.
+    let on_grid_line = |a: DVec2, b: DVec2| {
+        let on = |x: f64, y: f64| (x - y).abs() < 1e-9 && (x - x.round()).abs() < 1e-9;
+        on(a.x * w, b.x * w) || on(a.y * w, b.y * w)
+    };
+    let mut seams = seams;
+    seams.par_extend((0..topology.faces.len()).into_par_iter().flat_map_iter(|f| {
+        let uv = topology.corner_uvs(f);
+        (0..3)
+            .filter_map(move |k| match topology.walk_faces[f].link(k) {
+                EdgeLink::Face { face: g, .. } if (f as u32) < g && on_grid_line(uv[k], uv[(k + 1) % 3]) => {
+                    Some((k, g))
+                }
+                _ => None,
+            })
+            .flat_map(move |(k, g)| {
+                let (a, b) = (uv[k], uv[(k + 1) % 3]);
+                let chart = topology.face_chart[f];
+                along([a, b], DVec2::ZERO).map(move |t| {
+                    let point = a.lerp(b, t);
+                    ((inward(f as u32, point), chart), (inward(g, point), topology.face_chart[g as usize]))
+                })
+            })
+    }));
     let borders = topology
         .sides
         .par_iter()

@@ -8,11 +8,13 @@
 //! over a few hundred surfels. A coarse surfel is one *connected* piece of a chart in its texel:
 //! two arms of a chart that meet in a coarse texel, or the two sides of a slit, stay apart (when
 //! at least a finest texel apart), and coarse surfels are adjacent where their finer pieces are. At
-//! the finest level, surfels of one chart in side-adjacent texels are adjacent (parts of a chart
-//! closer than a texel in UV are joined), and seams join the surfels on their two sides.
+//! the finest level, surfels of one chart in side-adjacent texels are adjacent where a face has
+//! parts in both (the surface crosses their common side: two parts of a chart that only come
+//! within a texel of each other in UV stay apart), and seams join the surfels on their two sides.
+//! (Two parts of a chart in one texel are still one surfel.)
 
 use super::morton::morton;
-use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints};
+use super::surfel_fragments::{boundary_points, texel_sums, Fragment, SeamPoints, JOINS_BELOW, JOINS_LEFT};
 use crate::cancel;
 use crate::frame::Frame;
 use crate::mesh::{find, union, Topology};
@@ -117,8 +119,10 @@ impl SurfelLevel {
     }
 
     /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
-    /// across texel sides and across the seams. `None` when a stop was requested: each step takes
-    /// 0.1-0.2 s at 1024² on 2 cores, so it is asked between them.
+    /// where a face has parts in two side-adjacent texels (`Fragment::joins`) and across the
+    /// seams. `None`
+    /// when a stop was requested: each step takes 0.1-0.2 s at 1024² on 2 cores, so it is asked
+    /// between them.
     fn finest(width: usize, sums: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Option<Self> {
         let order = z_order(&sums, width);
         cancel::check().ok()?;
@@ -133,10 +137,11 @@ impl SurfelLevel {
                 seams.par_iter().filter_map(|&(a, b)| Some((find(a)?, find(b)?))).collect();
             pairs.par_extend((0..level.len() as u32).into_par_iter().flat_map_iter(move |s| {
                 let (i, j) = level.texel(s);
-                let chart = level.chart[s as usize];
-                [(1, 0), (0, 1)]
+                let (chart, joins) = (level.chart[s as usize], sums[order[s as usize] as usize].joins);
+                [(JOINS_LEFT, -1, 0), (JOINS_BELOW, 0, -1)]
                     .into_iter()
-                    .filter_map(move |(di, dj)| Some((s, level.at(level.texel_index((i + di, j + dj))?, chart)?)))
+                    .filter(move |&(bit, ..)| joins & bit != 0)
+                    .filter_map(move |(_, di, dj)| Some((s, level.at(level.texel_index((i + di, j + dj))?, chart)?)))
             }));
             (pairs, borders.iter().filter_map(|&point| find(point)).collect::<Vec<u32>>())
         };
@@ -287,7 +292,15 @@ impl SurfelLevel {
             .map(|&(_, chart, _, s)| {
                 let texel = key(s as usize).0;
                 let SurfelPoint { position, area, spread } = self.point[s as usize];
-                Fragment { texel, chart, area, moment: position * area, normal: self.normal[s as usize] * area, spread }
+                Fragment {
+                    texel,
+                    chart,
+                    area,
+                    moment: position * area,
+                    normal: self.normal[s as usize] * area,
+                    spread,
+                    joins: 0,
+                }
             })
             .collect();
         let mut next = Self::summed(width, &fragments, &owner);

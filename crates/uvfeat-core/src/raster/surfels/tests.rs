@@ -118,3 +118,31 @@ fn every_level_is_in_z_order_and_the_finest_finds_each_surfel_by_texel() {
     }
     assert_eq!(finest.at(0, 99), None);
 }
+
+#[test]
+fn texels_are_joined_through_a_face_not_across_a_notch_of_the_chart() {
+    // A flat U in UV (and in space): two arms 0.002 apart, the texel side u = 0.25 of a 16² grid
+    // between them, joined by a band at the bottom. The arms' surfels beside that side are not
+    // adjacent; the band's, which one face spans, are.
+    let (us, vs) = ([0.1, 0.249, 0.251, 0.4], [0.1, 0.2, 0.9]);
+    let points: Vec<[f64; 3]> = vs.iter().flat_map(|&v| us.iter().map(move |&u| [u, v, 0.0])).collect();
+    let uvs: Vec<[f64; 2]> = points.iter().map(|p| [p[0], p[1]]).collect();
+    let quads = [(0, 0), (1, 0), (2, 0), (0, 1), (2, 1)];
+    let faces: Vec<[i64; 3]> = quads
+        .iter()
+        .flat_map(|&(a, b)| {
+            let at = |a: i64, b: i64| b * 4 + a;
+            [[at(a, b), at(a + 1, b), at(a + 1, b + 1)], [at(a, b), at(a + 1, b + 1), at(a, b + 1)]]
+        })
+        .collect();
+    let mesh = TriangleMesh::new(&points, &faces, &uvs, &faces).unwrap();
+    let topology = Topology::build(&mesh, 0.0).unwrap();
+    assert_eq!(topology.n_charts, 1);
+    let frame = Frame::new(&topology, &mesh.positions).unwrap();
+    let surfels = Surfels::build(&topology, &frame, 16, Surface::Facets);
+    let level = surfels.level(0);
+    let at = |i: usize, j: usize| level.at(j * 16 + i, 0).unwrap();
+    assert!(!level.neighbours(at(3, 8)).contains(&at(4, 8)), "the arms are joined across the notch");
+    assert!(level.neighbours(at(3, 2)).contains(&at(4, 2)), "the band's faces join its texels");
+    assert!(level.neighbours(at(3, 8)).contains(&at(3, 7)) && level.neighbours(at(2, 8)).contains(&at(3, 8)));
+}
