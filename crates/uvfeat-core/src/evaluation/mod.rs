@@ -45,8 +45,9 @@ impl Patterns {
     }
 }
 
-/// Builds the data `settings` reads (the coverage, patches, seam maps, bilinear buffers, surfels) before the parallel
-/// work starts, rather than in the first worker that needs it while the others wait on it idle.
+/// Builds the data `settings` reads (the coverage, patches, seam maps, bilinear buffers, surfels)
+/// before the parallel work starts, rather than in the first worker that needs it while the others
+/// wait on it idle.
 pub fn prepare(atlas: &Atlas, settings: &ComputeSettings) {
     atlas.coverage();
     atlas.patches();

@@ -74,11 +74,10 @@ pub struct SurfelSumSettings {
     pub surface: Surface,
     /// Sum the samples' normals (bending energy).
     pub with_normals: bool,
-    /// Surfels a plane's ball is summed over ([`SurfelBall::new`]).
-    pub surfels_per_ball: f64,
-    /// The coarsest level of the pyramid a ball is summed at (`usize::MAX`: any; the values at the
-    /// vertices build only those their balls need, `sampling::levels_to_build`).
-    pub coarsest_level: usize,
+    /// Surfels a plane's ball is summed over, and the coarsest level it may be summed at
+    /// ([`SurfelBall::new`]; the values at the vertices build only the levels their balls need,
+    /// `sampling::levels_to_build`).
+    pub count: SurfelCount,
 }
 
 /// The sums of the ball's connected part around `centre`, with their sample counts (`valid`:
@@ -95,8 +94,7 @@ pub fn surfel_sums(
     let r = settings.stats.radius;
     let texels = (centre.texel_length, centre.texel_side);
     let at = (centre.uv, centre.chart);
-    let count = SurfelCount { per_ball: settings.surfels_per_ball, coarsest: settings.coarsest_level };
-    let Some(search) = SurfelBall::new(atlas, surfels, at, texels, r, count, moment_ramp_centre) else {
+    let Some(search) = SurfelBall::new(atlas, surfels, at, texels, r, settings.count, moment_ramp_centre) else {
         return (NeighbourhoodStats::default(), SampleCounts::default());
     };
     let (inner, outer) = search.ramp;

@@ -10,7 +10,7 @@ use crate::evaluation::{integration, Integration, PixelResult};
 use crate::features::{surfel_sums, SurfelCentre, SurfelSumSettings};
 use crate::raster::morton;
 use crate::raster::Surfels;
-use crate::sampling::{levels_to_build, SampleCounts, SurfelBall};
+use crate::sampling::{levels_to_build, SampleCounts, SurfelBall, SurfelCount};
 use crate::settings::ComputeSettings;
 use rayon::prelude::*;
 
@@ -109,8 +109,10 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
     // The coarser levels are built only as far as the balls need them (`levels_to_build`).
     let asked =
         order.iter().zip(&centres).filter_map(|(&(_, vertex, _), centre)| Some((centre.as_ref()?, radius_of(vertex))));
-    let shared_sums =
-        SurfelSumSettings { coarsest_level: built_levels(surfels, asked, settings.samples), ..settings.surfel_sums() };
+    let shared_sums = SurfelSumSettings {
+        count: built_levels(surfels, asked, settings.surfel_sums().count),
+        ..settings.surfel_sums()
+    };
     let sorted: Vec<PixelResult> = order
         .par_iter()
         .zip(&centres)
@@ -127,7 +129,7 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
                 let sums = match radii {
                     Some(_) => {
                         own.radius = radius_of(vertex);
-                        SurfelSumSettings { coarsest_level: shared_sums.coarsest_level, ..own.surfel_sums() }
+                        SurfelSumSettings { count: shared_sums.count, ..own.surfel_sums() }
                     }
                     None => shared_sums,
                 };
@@ -153,22 +155,26 @@ fn values_at(atlas: &Atlas, settings: &ComputeSettings, radii: Option<&[f64]>) -
     Ok(VertexValues { values, counts: ids.iter().map(|&g| results[g as usize].counts).collect() })
 }
 
-/// The coarsest level of `surfels` that balls around the `(centre, radius)` of `asked` over about
-/// `samples` surfels each are summed at, built here before their parallel loop: the finest whose
-/// balls that ask for coarser ones add little work ([`levels_to_build`]).
-fn built_levels<'a>(surfels: &Surfels, asked: impl Iterator<Item = (&'a SurfelCentre, f64)>, samples: usize) -> usize {
+/// `count` with the coarsest level of `surfels` that balls around the `(centre, radius)` of `asked`
+/// are summed at, built here before their parallel loop: the finest whose balls that ask for
+/// coarser ones add little work ([`levels_to_build`]).
+fn built_levels<'a>(
+    surfels: &Surfels,
+    asked: impl Iterator<Item = (&'a SurfelCentre, f64)>,
+    count: SurfelCount,
+) -> SurfelCount {
     // A pyramid stopped before its finest level has none (the caller's check reports the stop).
     if surfels.n_levels() == 0 {
-        return 0;
+        return count;
     }
     let mut counts = vec![0; surfels.n_levels()];
     for (centre, radius) in asked {
         let texels = (centre.texel_length, centre.texel_side);
-        counts[SurfelBall::asked_level(surfels.n_levels(), texels, radius, samples as f64)] += 1;
+        counts[SurfelBall::asked_level(surfels.n_levels(), texels, radius, count.per_ball)] += 1;
     }
     let coarsest = levels_to_build(&counts);
     surfels.level(coarsest);
-    coarsest
+    SurfelCount { coarsest, ..count }
 }
 
 /// Position of texel-space point `uv` along a Z (Morton) curve over a `resolution`² grid.

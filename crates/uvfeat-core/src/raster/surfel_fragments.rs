@@ -239,7 +239,7 @@ pub(super) fn boundary_points(topology: &Topology, width: usize) -> (Vec<SeamPoi
         let n = ((a[1] - a[0]).length().max(extra.x) * 2.0 * w).ceil().clamp(1.0, 8.0 * w) as usize;
         (0..n).map(move |k| (k as f64 + 0.5) / n as f64)
     };
-    let seams = topology
+    let mut seams: Vec<SeamPoints> = topology
         .sides
         .par_iter()
         .enumerate()
@@ -256,14 +256,13 @@ pub(super) fn boundary_points(topology: &Topology, width: usize) -> (Vec<SeamPoi
                 ((a, side.chart), (b, other.chart))
             })
         })
-        .collect::<Vec<SeamPoints>>();
+        .collect();
     // An interior edge along a texel side: its two faces have parts on either side of it and none
     // across (`face_fragments` joins no texels for them), so it is walked as a seam is.
     let on_grid_line = |a: DVec2, b: DVec2| {
         let on = |x: f64, y: f64| (x - y).abs() < 1e-9 && (x - x.round()).abs() < 1e-9;
         on(a.x * w, b.x * w) || on(a.y * w, b.y * w)
     };
-    let mut seams = seams;
     seams.par_extend((0..topology.faces.len()).into_par_iter().flat_map_iter(|f| {
         let uv = topology.corner_uvs(f);
         (0..3)

@@ -120,9 +120,8 @@ impl SurfelLevel {
 
     /// The finest level: the face fragments summed per texel and chart, adjacent within a chart
     /// where a face has parts in two side-adjacent texels (`Fragment::joins`) and across the
-    /// seams. `None`
-    /// when a stop was requested: each step takes 0.1-0.2 s at 1024² on 2 cores, so it is asked
-    /// between them.
+    /// seams. `None` when a stop was requested: each step takes 0.1-0.2 s at 1024² on 2 cores, so
+    /// it is asked between them.
     fn finest(width: usize, sums: Vec<Fragment>, seams: &[SeamPoints], borders: &[(DVec2, i32)]) -> Option<Self> {
         let order = z_order(&sums, width);
         cancel::check().ok()?;
@@ -311,7 +310,6 @@ impl SurfelLevel {
         }
         // Each link once (adjacency lists hold both directions) and only between parents: a
         // quarter of the pairs to sort (level 0 -> 1 of the 100K-face dragon at 512²: 41-49 ms before).
-        let parent = &parent;
         let pairs = (0..self.len() as u32)
             .into_par_iter()
             .flat_map_iter(|s| self.neighbours(s).iter().filter(move |&&t| s < t).map(move |&t| (s, t)))
@@ -319,7 +317,7 @@ impl SurfelLevel {
             .filter(|(a, b)| a != b)
             .collect();
         next.set_adjacency(pairs);
-        next.finer_parent = parent.clone();
+        next.finer_parent = parent;
         next
     }
 }

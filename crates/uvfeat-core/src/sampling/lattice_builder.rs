@@ -287,9 +287,10 @@ impl<'a> LatticeBuilder<'a> {
         }
         let faces: Vec<u32> = held.iter().map(|&(_, slot)| table.get(slot).copied().unwrap_or(u32::MAX)).collect();
         let mut crossing = Vec::new();
+        let patches = &atlas.patches().faces;
         for (k, (&(cell, _), &face)) in held.iter().zip(&faces).enumerate() {
             if let Some(&ahead) = faces.get(k + PREFETCH_AHEAD) {
-                prefetch(atlas.patches().faces.get(ahead as usize));
+                prefetch(patches.get(ahead as usize));
             }
             let Some(face) = interior_of_chart(atlas, face, chart) else {
                 crossing.push(cell);
@@ -345,10 +346,10 @@ impl<'a> LatticeBuilder<'a> {
     fn keep(&mut self, cell: IVec2, located: Located) -> Option<Route> {
         let (atlas, settings) = (self.atlas, self.settings);
         let (w, line) = (self.place(cell), cell[self.lattice.axis] as u32);
-        let patches = &atlas.patches().faces;
+        let patches = atlas.patches();
         match located {
-            Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches[face as usize].chart >= 0 => {
-                let patch = &patches[face as usize];
+            Located::Inside { uv, m_path, face: Some(face), jumps, .. } if patches.faces[face as usize].chart >= 0 => {
+                let patch = &patches.faces[face as usize];
                 let local = uv.as_vec2() - Vec2::from_array(patch.uv0);
                 let area = f64::from(patch.area_element) * self.cell_uv_area * m_path.determinant().abs();
                 let normal = if settings.with_normals { patch.normal_at(local) } else { Vec3::ZERO };
@@ -359,7 +360,7 @@ impl<'a> LatticeBuilder<'a> {
                 match settings.lookup.evaluate(atlas, face, uv, chart) {
                     Some(point) => {
                         let area = point.area_element * self.cell_uv_area * m_path.determinant().abs();
-                        let relative = (point.position - atlas.patches().origin).as_vec3();
+                        let relative = (point.position - patches.origin).as_vec3();
                         self.push(w, line, relative, point.normal.as_vec3(), area as f32);
                     }
                     None => self.lattice.lost.push(LostPoint { w, border: false }),

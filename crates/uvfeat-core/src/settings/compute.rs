@@ -8,7 +8,7 @@ use crate::features::{
 use crate::lookup::Lookup;
 use crate::raster::Surface;
 use crate::relocation::Relocation;
-use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath};
+use crate::sampling::{Criterion, Geodesic, Overlaps, Quadrature, SamplerSettings, SamplingPath, SurfelCount};
 
 /// A feature computation request.
 #[derive(Debug, Clone, PartialEq)]
@@ -216,8 +216,7 @@ impl ComputeSettings {
             stats: self.stats(),
             surface: self.surface,
             with_normals: self.sampler().with_normals,
-            surfels_per_ball: self.samples as f64,
-            coarsest_level: usize::MAX,
+            count: SurfelCount::per_ball(self.samples as f64),
         }
     }
 
